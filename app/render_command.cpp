@@ -1,0 +1,79 @@
+// `vplgi render`: headless EGL rendering to PNG (tone-mapped display image) or EXR (linear).
+#include <cstdio>
+#include <filesystem>
+
+#include "cli.h"
+#include "commands.h"
+#include "core/builtin_scenes.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/params.h"
+#include "gl/api/context.h"
+#include "session.h"
+
+namespace vplgi {
+
+int runRender(const std::vector<std::string>& args)
+{
+    OptionParser parser("vplgi render", "Renders a scene headless (EGL, no window) and writes one image:\n"
+                                        "a .png holds the tone-mapped display image, an .exr the linear radiance.");
+    addSessionOptions(parser);
+    parser.value("width", "W", "image width in pixels", "640");
+    parser.value("height", "H", "image height in pixels", "360");
+    parser.value("frames", "N", "frames to render (animations advance 1/fps per frame); the last is written", "1");
+    parser.value("fps", "F", "animation frames per second", "30");
+    parser.value("out", "FILE", "output image (.png or .exr); its directory must exist", "out/render.png");
+    parser.flag("headless", "accepted for symmetry: render is always headless");
+    parser.flag("quiet", "do not print the configuration and timings");
+    if (!parser.parse(args)) return 0;
+
+    // Everything that can be wrong with the input is checked before a context exists.
+    const int width = parser.getInt("width", 1, 16384);
+    const int height = parser.getInt("height", 1, 16384);
+    const int frames = parser.getInt("frames", 1, 1000000);
+    const float fps = parser.getFloat("fps", 0.001f, 10000.0f);
+    const std::string out = parser.get("out");
+    checkOutputPath(out);
+    const bool defaultOut = !parser.has("out");
+    std::filesystem::path outDir = std::filesystem::path(out).parent_path();
+    if (!defaultOut && !outDir.empty())
+        require(std::filesystem::is_directory(outDir), out + ": directory " + outDir.string() + " does not exist");
+    std::unique_ptr<gl::Context> context; // declared first: destroyed after the session's GL objects
+    Session session(sessionOptions(parser));
+    const bool quiet = parser.has("quiet");
+    if (!quiet) std::printf("%s", session.configuration().c_str());
+
+    context = gl::createHeadlessContext();
+    if (!quiet) std::printf("context = %s\n", context->description().c_str());
+    session.createRenderer();
+    for (int frame = 0; frame < frames; ++frame) {
+        session.applyAnimations(static_cast<float>(frame) / fps);
+        session.renderer().renderFrame(session.camera(), width, height, static_cast<float>(frame) / fps);
+    }
+    if (!quiet) {
+        std::printf("timings (last frame, %s):\n",
+                    session.renderer().timer().mode() == gl::PassTimer::Mode::TimerQuery ? "GPU timer queries"
+                                                                                        : "glFinish + wall clock");
+        for (const gl::PassTime& t : session.renderer().timer().times())
+            std::printf("  %-16s %9.2f ms\n", t.name.c_str(), t.milliseconds);
+    }
+    if (defaultOut && !outDir.empty()) std::filesystem::create_directories(outDir);
+    if (isFloatImagePath(out)) writeImage(out, session.renderer().readRadiance());
+    else writeImage(out, session.renderer().readDisplay());
+    std::printf("%s\n", out.c_str());
+    return 0;
+}
+
+int runScenes(const std::vector<std::string>& args)
+{
+    OptionParser parser("vplgi scenes", "Lists the built-in scenes and the techniques.");
+    if (!parser.parse(args)) return 0;
+    std::printf("built-in scenes:");
+    for (const std::string& s : builtinSceneNames()) std::printf(" %s", s.c_str());
+    std::printf("\ntechniques:");
+    for (const std::string& t : techniqueNames()) std::printf(" %s", t.c_str());
+    std::printf("\n");
+    return 0;
+}
+
+} // namespace vplgi

@@ -1,0 +1,87 @@
+#include "session.h"
+
+#include "core/error.h"
+#include "core/params.h"
+#include "cli.h"
+
+namespace vplgi {
+
+void addSessionOptions(OptionParser& parser)
+{
+    parser.value("scene", "S", "built-in scene (cornell, furnace, maze, street), scene file (.json) or .gltf/.glb");
+    parser.value("technique", "T", "GI technique (default: the scene file's, else direct)");
+    parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
+    parser.value("set", "KEY=VALUE", "set a parameter, e.g. renderer.exposure=2", "", true);
+}
+
+SessionOptions sessionOptions(const OptionParser& parser)
+{
+    require(parser.has("scene"), "--scene is required (e.g. --scene cornell)");
+    SessionOptions options;
+    options.sceneSpec = parser.get("scene");
+    options.technique = parser.get("technique");
+    options.camera = parser.get("camera");
+    for (const std::string& s : parser.getAll("set")) options.settings.push_back(parseSetting(s));
+    return options;
+}
+
+
+Session::Session(const SessionOptions& options) : mDescription(loadSceneSpec(options.sceneSpec))
+{
+    mTechniqueName = !options.technique.empty() ? options.technique
+                     : !mDescription.technique.empty() ? mDescription.technique
+                                                       : "direct";
+    mTechnique = createTechnique(mTechniqueName);
+
+    std::vector<std::pair<std::string, std::string>> settings = mDescription.settings;
+    settings.insert(settings.end(), options.settings.begin(), options.settings.end());
+    ParamSetter setter(settings);
+    visitAll(setter);
+    setter.finish();
+
+    Scene& scene = mDescription.scene;
+    if (scene.cameras.empty()) scene.cameras.push_back(makeDefaultCamera(scene.worldBounds()));
+    mCameraName = options.camera.empty() ? scene.cameras.front().name : options.camera;
+    const Camera* camera = scene.findCamera(mCameraName);
+    if (!camera) {
+        std::string known;
+        for (const Camera& c : scene.cameras) known += (known.empty() ? "" : ", ") + c.name;
+        throw Error("scene " + scene.name + " has no camera \"" + mCameraName + "\" (cameras: " + known + ")");
+    }
+    mCamera = *camera;
+}
+
+void Session::visitAll(ParamVisitor& visitor)
+{
+    mParams.visitParams(visitor);
+    if (mTechnique) mTechnique->visitParams(visitor);
+    else if (mRenderer) mRenderer->technique().visitParams(visitor);
+}
+
+void Session::createRenderer()
+{
+    mShaders = std::make_unique<gl::ShaderLoader>();
+    mRenderer = std::make_unique<Renderer>(*mShaders, mDescription.scene, mParams, std::move(mTechnique));
+}
+
+bool Session::applyAnimations(float time)
+{
+    bool lightMoved = false;
+    for (const Animation& animation : mDescription.scene.animations) {
+        applyAnimation(mDescription.scene, animation, time);
+        if (animation.targetKind == Animation::Target::Light) lightMoved = true;
+        else if (animation.targetName == mCameraName) mCamera = *mDescription.scene.findCamera(mCameraName);
+    }
+    if (lightMoved && mRenderer) mRenderer->markLightsChanged();
+    return lightMoved;
+}
+
+std::string Session::configuration()
+{
+    ParamDumper dumper;
+    visitAll(dumper);
+    return "scene = " + mDescription.scene.source + "\ntechnique = " + mTechniqueName + "\ncamera = " + mCameraName +
+           "\n" + dumper.text();
+}
+
+} // namespace vplgi

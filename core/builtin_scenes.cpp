@@ -1,0 +1,861 @@
+// The built-in scenes: generated geometry, no external assets.
+//
+// Every surface is built from a few primitives (grid-tessellated patches and boxes, cylinders,
+// spheres) whose triangles are counter-clockwise seen from the side their analytic vertex normals
+// point to. Large surfaces are tessellated so that per-vertex techniques see small triangles.
+// Layouts that look random come from a seeded std::mt19937 used as `engine() % n`: the engine's
+// output is fixed by the standard, distribution objects are not, so the scenes are identical
+// with every standard library.
+#include "builtin_scenes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "error.h"
+
+namespace vplgi {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr double kPiDouble = 3.14159265358979323846;
+
+// ---------------------------------------------------------------------------------------------
+// Geometry helpers
+
+// The shape of a parametric vertex grid. A collapsed row (a sphere pole, a disc centre) holds
+// copies of one point: its cells get one triangle instead of two, so no zero-area triangles appear.
+struct GridShape {
+    int nu;
+    int nv;
+    bool collapsedV0;
+    bool collapsedV1;
+};
+
+// Appends the (nu+1) x (nv+1) vertices surface(u, v), u and v in [0,1], and their triangles.
+// Triangles are counter-clockwise seen from the side dP/du x dP/dv points to; the surface must
+// return normals on that side.
+template <class Surface>
+void addGrid(Mesh& mesh, const GridShape& shape, Surface surface)
+{
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    const auto rowLength = static_cast<std::uint32_t>(shape.nu + 1);
+    for (int j = 0; j <= shape.nv; ++j) {
+        for (int i = 0; i <= shape.nu; ++i) {
+            const float u = static_cast<float>(i) / static_cast<float>(shape.nu);
+            const float v = static_cast<float>(j) / static_cast<float>(shape.nv);
+            Vertex vertex = surface(u, v);
+            vertex.texcoord = glm::vec2(u, v);
+            mesh.vertices.push_back(vertex);
+        }
+    }
+    for (int j = 0; j < shape.nv; ++j) {
+        for (int i = 0; i < shape.nu; ++i) {
+            // a b on row j, d c on row j + 1.
+            const std::uint32_t a = base + static_cast<std::uint32_t>(j) * rowLength + static_cast<std::uint32_t>(i);
+            const std::uint32_t b = a + 1, c = b + rowLength, d = a + rowLength;
+            if (!(j == 0 && shape.collapsedV0)) mesh.indices.insert(mesh.indices.end(), {a, b, c});
+            if (!(j == shape.nv - 1 && shape.collapsedV1)) mesh.indices.insert(mesh.indices.end(), {a, c, d});
+        }
+    }
+}
+
+using Quad = std::array<glm::vec3, 4>;
+
+// A bilinear patch through q[0..3] (counter-clockwise seen from its front), nu x nv cells. The
+// normal is the patch's own, so slightly non-planar measured quads still get exact normals.
+void addPatch(Mesh& mesh, const Quad& q, int nu, int nv)
+{
+    addGrid(mesh, GridShape{nu, nv, false, false}, [&q](float u, float v) {
+        Vertex vertex;
+        vertex.position = glm::mix(glm::mix(q[0], q[1], u), glm::mix(q[3], q[2], u), v);
+        const glm::vec3 dPdu = glm::mix(q[1] - q[0], q[2] - q[3], v);
+        const glm::vec3 dPdv = glm::mix(q[3] - q[0], q[2] - q[1], u);
+        vertex.normal = glm::normalize(glm::cross(dPdu, dPdv));
+        return vertex;
+    });
+}
+
+int cellsAlong(const glm::vec3& edge, float cellSize)
+{
+    // The small slack keeps 6.0 / 0.25 at 24 cells despite rounding.
+    return std::max(1, static_cast<int>(std::ceil(glm::length(edge) / cellSize - 1e-3f)));
+}
+
+// The rectangle origin + s edgeU + t edgeV, s, t in [0,1], in cells of at most about cellSize;
+// its front side is the one edgeU x edgeV points to.
+void addRect(Mesh& mesh, const glm::vec3& origin, const glm::vec3& edgeU, const glm::vec3& edgeV, float cellSize)
+{
+    addPatch(mesh, Quad{origin, origin + edgeU, origin + edgeU + edgeV, origin + edgeV}, cellsAlong(edgeU, cellSize),
+             cellsAlong(edgeV, cellSize));
+}
+
+// A closed axis-aligned box with outward normals. Each face gets its own vertices (sharp edges).
+void addBox(Mesh& mesh, const glm::vec3& lower, const glm::vec3& upper, float cellSize)
+{
+    const glm::vec3 size = upper - lower;
+    const glm::vec3 dx(size.x, 0.0f, 0.0f), dy(0.0f, size.y, 0.0f), dz(0.0f, 0.0f, size.z);
+    addRect(mesh, glm::vec3(upper.x, lower.y, lower.z), dy, dz, cellSize); // +x: y cross z = +x
+    addRect(mesh, lower, dz, dy, cellSize);                                // -x
+    addRect(mesh, glm::vec3(lower.x, upper.y, lower.z), dz, dx, cellSize); // +y
+    addRect(mesh, lower, dx, dz, cellSize);                                // -y
+    addRect(mesh, glm::vec3(lower.x, lower.y, upper.z), dx, dy, cellSize); // +z
+    addRect(mesh, lower, dy, dx, cellSize);                                // -z
+}
+
+// Point on the unit circle in the xz plane; as phi grows it turns from +z towards +x, so that
+// d/dphi x (+y) points outwards.
+glm::vec3 ringDirection(float phi)
+{
+    return glm::vec3(std::sin(phi), 0.0f, std::cos(phi));
+}
+
+// A vertical cylinder standing on baseCenter, optionally with top and bottom discs.
+void addCylinder(Mesh& mesh, const glm::vec3& baseCenter, float radius, float height, int segments, int stacks,
+                 bool caps)
+{
+    addGrid(mesh, GridShape{segments, stacks, false, false}, [&](float u, float v) {
+        Vertex vertex;
+        vertex.normal = ringDirection(2.0f * kPi * u);
+        vertex.position = baseCenter + radius * vertex.normal + glm::vec3(0.0f, height * v, 0.0f);
+        return vertex;
+    });
+    if (!caps) return;
+    // The discs run from the rim (v = 0) to the centre (v = 1); turning phi backwards flips the
+    // bottom disc to face down.
+    for (float sense : {1.0f, -1.0f}) {
+        const float y = sense > 0.0f ? height : 0.0f;
+        addGrid(mesh, GridShape{segments, 1, false, true}, [&](float u, float v) {
+            Vertex vertex;
+            vertex.normal = glm::vec3(0.0f, sense, 0.0f);
+            vertex.position = baseCenter + glm::vec3(0.0f, y, 0.0f);
+            if (v < 1.0f) vertex.position += radius * (1.0f - v) * ringDirection(sense * 2.0f * kPi * u);
+            return vertex;
+        });
+    }
+}
+
+// A UV sphere: `rings` latitude bands from the south pole (v = 0) to the north pole, `segments`
+// longitude cells. Inward spheres reverse the longitude so that triangles face the inside.
+void addSphere(Mesh& mesh, const glm::vec3& center, float radius, int rings, int segments, bool inward)
+{
+    const float sense = inward ? -1.0f : 1.0f;
+    addGrid(mesh, GridShape{segments, rings, true, true}, [&](float u, float v) {
+        glm::vec3 direction(0.0f, v < 0.5f ? -1.0f : 1.0f, 0.0f); // exact poles
+        if (v > 0.0f && v < 1.0f) {
+            const float latitude = kPi * (v - 0.5f);
+            direction = std::cos(latitude) * ringDirection(sense * 2.0f * kPi * u);
+            direction.y = std::sin(latitude);
+        }
+        Vertex vertex;
+        vertex.position = center + radius * direction;
+        vertex.normal = sense * direction;
+        return vertex;
+    });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scene assembly helpers
+
+Scene newScene(const std::string& name)
+{
+    Scene scene;
+    scene.name = name;
+    scene.source = "builtin:" + name;
+    return scene;
+}
+
+// Adds a material; the defaults give a pure Lambertian surface (specular 0, see glsl/shared/brdf.h).
+int addMaterial(Scene& scene, const std::string& name, const glm::vec3& albedo, float roughness = 1.0f,
+                float specular = 0.0f)
+{
+    Material material;
+    material.name = name;
+    material.baseColor = glm::vec4(albedo, 1.0f);
+    material.metallic = 0.0f;
+    material.roughness = roughness;
+    material.specular = specular;
+    scene.materials.push_back(material);
+    return static_cast<int>(scene.materials.size()) - 1;
+}
+
+Mesh newMesh(const std::string& name, int material)
+{
+    Mesh mesh;
+    mesh.name = name;
+    mesh.material = material;
+    return mesh;
+}
+
+// Moves the mesh into the scene; returns its index (for further instances).
+int addMesh(Scene& scene, Mesh mesh)
+{
+    scene.meshes.push_back(std::move(mesh));
+    return static_cast<int>(scene.meshes.size()) - 1;
+}
+
+void addInstance(Scene& scene, int mesh, const glm::mat4& worldFromObject)
+{
+    Instance instance;
+    instance.mesh = mesh;
+    instance.worldFromObject = worldFromObject;
+    scene.instances.push_back(instance);
+}
+
+// A mesh used once, in place.
+void placeMesh(Scene& scene, Mesh mesh)
+{
+    if (mesh.indices.empty()) return;
+    addInstance(scene, addMesh(scene, std::move(mesh)), glm::mat4(1.0f));
+}
+
+Camera makeCamera(const std::string& name, const glm::vec3& position, const glm::vec3& target, float fovYDegrees,
+                  float zNear, float zFar)
+{
+    Camera camera;
+    camera.name = name;
+    camera.position = position;
+    camera.target = target;
+    camera.fovY = glm::radians(fovYDegrees);
+    camera.zNear = zNear;
+    camera.zFar = zFar;
+    return camera;
+}
+
+Light makePointLight(const std::string& name, const glm::vec3& position, const glm::vec3& color, float intensity)
+{
+    Light light;
+    light.name = name;
+    light.type = LightType::Point;
+    light.position = position;
+    light.color = color;
+    light.intensity = intensity;
+    return light;
+}
+
+// ---------------------------------------------------------------------------------------------
+// cornell
+
+// The measured data is in millimetres with the camera at z = -800 looking along +z; turning it
+// 180 degrees about y puts the camera at +z looking along -z as vplgi's cameras do.
+glm::vec3 cornellToWorld(float x, float y, float z)
+{
+    return glm::vec3(-x, y, -z) / 1000.0f;
+}
+
+Quad cornellQuad(const std::array<float, 12>& mm)
+{
+    Quad quad;
+    for (int i = 0; i < 4; ++i) quad[i] = cornellToWorld(mm[3 * i], mm[3 * i + 1], mm[3 * i + 2]);
+    return quad;
+}
+
+// Orders the corners so the counter-clockwise side faces `towards`. The measured quads happen to be
+// listed that way already; this keeps the orientation right however a face's corners are typed
+// (the block sides are assembled from footprint corners here).
+Quad faceTowards(Quad q, const glm::vec3& towards)
+{
+    const glm::vec3 normal = glm::cross(q[2] - q[0], q[3] - q[1]);
+    const glm::vec3 centre = 0.25f * (q[0] + q[1] + q[2] + q[3]);
+    if (glm::dot(normal, towards - centre) < 0.0f) std::swap(q[1], q[3]);
+    return q;
+}
+
+// A block of the Cornell box: its top at height `top` [mm] and the four footprint corners [mm];
+// faces oriented away from the block's centre. No bottom: it stands on the floor.
+Mesh makeCornellBlock(const std::string& name, int material, const std::array<float, 8>& footprint, float top)
+{
+    Mesh mesh = newMesh(name, material);
+    Quad ground, roof;
+    for (int i = 0; i < 4; ++i) {
+        ground[i] = cornellToWorld(footprint[2 * i], 0.0f, footprint[2 * i + 1]);
+        roof[i] = cornellToWorld(footprint[2 * i], top, footprint[2 * i + 1]);
+    }
+    const glm::vec3 centre =
+        0.125f * (ground[0] + ground[1] + ground[2] + ground[3] + roof[0] + roof[1] + roof[2] + roof[3]);
+    auto addFace = [&](Quad face) {
+        const glm::vec3 faceCentre = 0.25f * (face[0] + face[1] + face[2] + face[3]);
+        addPatch(mesh, faceTowards(face, faceCentre + (faceCentre - centre)), 4, 4);
+    };
+    addFace(roof);
+    for (int i = 0; i < 4; ++i) {
+        const int next = (i + 1) % 4;
+        addFace(Quad{ground[i], ground[next], roof[next], roof[i]});
+    }
+    return mesh;
+}
+
+Scene makeCornell()
+{
+    Scene scene = newScene("cornell");
+    // RGB approximations of the measured reflectance spectra.
+    const int white = addMaterial(scene, "white", glm::vec3(0.725f, 0.71f, 0.68f));
+    const int red = addMaterial(scene, "red", glm::vec3(0.63f, 0.065f, 0.05f));
+    const int green = addMaterial(scene, "green", glm::vec3(0.14f, 0.45f, 0.091f));
+    const int light = addMaterial(scene, "light", glm::vec3(0.78f));
+    scene.materials[light].emission = glm::vec3(17.0f, 12.0f, 4.0f);
+
+    // The room's walls face its centre; measured corners in mm.
+    const glm::vec3 inside = cornellToWorld(278.0f, 274.4f, 279.6f);
+    constexpr int kWallCells = 8;
+    auto addWall = [&](const std::string& name, int material, const std::array<float, 12>& mm) {
+        Mesh mesh = newMesh(name, material);
+        addPatch(mesh, faceTowards(cornellQuad(mm), inside), kWallCells, kWallCells);
+        placeMesh(scene, std::move(mesh));
+    };
+    addWall("floor", white, {552.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 559.2f, 549.6f, 0.0f, 559.2f});
+    addWall("ceiling", white, {556.0f, 548.8f, 0.0f, 556.0f, 548.8f, 559.2f, 0.0f, 548.8f, 559.2f, 0.0f, 548.8f, 0.0f});
+    addWall("back_wall", white,
+            {549.6f, 0.0f, 559.2f, 0.0f, 0.0f, 559.2f, 0.0f, 548.8f, 559.2f, 556.0f, 548.8f, 559.2f});
+    addWall("green_wall", green, {0.0f, 0.0f, 559.2f, 0.0f, 0.0f, 0.0f, 0.0f, 548.8f, 0.0f, 0.0f, 548.8f, 559.2f});
+    addWall("red_wall", red, {552.8f, 0.0f, 0.0f, 549.6f, 0.0f, 559.2f, 556.0f, 548.8f, 559.2f, 556.0f, 548.8f, 0.0f});
+
+    // 0.1 mm below the ceiling so the two are not coplanar; it faces down only.
+    const std::array<float, 12> lightCorners{343.0f, 548.7f, 227.0f, 343.0f, 548.7f, 332.0f,
+                                             213.0f, 548.7f, 332.0f, 213.0f, 548.7f, 227.0f};
+    Mesh lamp = newMesh("light", light);
+    addPatch(lamp, faceTowards(cornellQuad(lightCorners), inside), 1, 1);
+    placeMesh(scene, std::move(lamp));
+
+    placeMesh(scene, makeCornellBlock("short_block", white,
+                                      {130.0f, 65.0f, 82.0f, 225.0f, 240.0f, 272.0f, 290.0f, 114.0f}, 165.0f));
+    placeMesh(scene, makeCornellBlock("tall_block", white,
+                                      {423.0f, 247.0f, 265.0f, 296.0f, 314.0f, 456.0f, 472.0f, 406.0f}, 330.0f));
+
+    // The classic camera: 35 mm focal length on a 25 mm film, i.e. 39.3 degrees.
+    scene.cameras.push_back(makeCamera("default", cornellToWorld(278.0f, 273.0f, -800.0f),
+                                       cornellToWorld(278.0f, 273.0f, 279.6f), 39.3f, 0.01f, 10.0f));
+    scene.validate();
+    return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
+// maze
+
+constexpr int kMazeColumns = 5;            // cells along x
+constexpr int kMazeRows = 4;               // cells along z
+constexpr float kMazeCell = 6.0f;          // [m]
+constexpr float kMazeHeight = 3.0f;        // floor to ceiling [m]
+constexpr float kMazeWall = 0.2f;          // wall thickness [m]
+constexpr float kMazeTessellation = 0.25f; // quad size on walls, floor and ceiling [m]
+constexpr float kDoorWidth = 1.2f;
+constexpr float kDoorHeight = 2.2f;
+constexpr std::uint32_t kMazeSeed = 20240607u;
+
+// A perfect maze (a spanning tree of the cell grid): every room reaches every other through
+// exactly one path, so most rooms are hidden from each other. Each passage is a doorway.
+struct MazeLayout {
+    // Passage between (c, r) and (c + 1, r), resp. (c, r + 1); the door centre is `offset`
+    // metres along the wall from the cell's corner with lower coordinates.
+    std::vector<std::optional<float>> eastDoor;
+    std::vector<std::optional<float>> southDoor;
+};
+
+int mazeCell(int column, int row)
+{
+    return row * kMazeColumns + column;
+}
+
+glm::vec3 mazeCellOrigin(int column, int row)
+{
+    // The maze is centred on the origin.
+    return glm::vec3(column * kMazeCell - 0.5f * kMazeColumns * kMazeCell, 0.0f,
+                     row * kMazeCell - 0.5f * kMazeRows * kMazeCell);
+}
+
+MazeLayout makeMazeLayout(std::mt19937& engine)
+{
+    MazeLayout layout;
+    layout.eastDoor.resize(kMazeColumns * kMazeRows);
+    layout.southDoor.resize(kMazeColumns * kMazeRows);
+    std::vector<bool> visited(kMazeColumns * kMazeRows, false);
+    // Depth-first search with an explicit stack (the "recursive backtracker").
+    std::vector<std::pair<int, int>> stack{{0, 0}};
+    visited[0] = true;
+    while (!stack.empty()) {
+        const auto [column, row] = stack.back();
+        std::vector<std::pair<int, int>> next;
+        const std::array<std::pair<int, int>, 4> steps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+        for (const auto& [dc, dr] : steps) {
+            const int c = column + dc, r = row + dr;
+            if (c >= 0 && c < kMazeColumns && r >= 0 && r < kMazeRows && !visited[mazeCell(c, r)])
+                next.emplace_back(c, r);
+        }
+        if (next.empty()) {
+            stack.pop_back();
+            continue;
+        }
+        const auto [c, r] = next[engine() % next.size()];
+        // Doors between 2.0 and 4.0 m along the 6 m wall keep the corners free for furniture.
+        const float offset = 2.0f + 0.1f * static_cast<float>(engine() % 21);
+        if (r == row)
+            layout.eastDoor[mazeCell(std::min(c, column), row)] = offset;
+        else
+            layout.southDoor[mazeCell(column, std::min(r, row))] = offset;
+        visited[mazeCell(c, r)] = true;
+        stack.emplace_back(c, r);
+    }
+    return layout;
+}
+
+// A wall of thickness kMazeWall centred on the line x = across (alongX false) or z = across
+// (alongX true), from `from` to `to` along it, with an optional doorway centred at `door`
+// (absolute coordinate). Solid boxes, so no light leaks through seams.
+void addMazeWall(Mesh& mesh, bool alongX, float across, float from, float to, std::optional<float> door)
+{
+    auto box = [&](float a0, float a1, float y0, float y1) {
+        const float half = 0.5f * kMazeWall;
+        const glm::vec3 lower = alongX ? glm::vec3(a0, y0, across - half) : glm::vec3(across - half, y0, a0);
+        const glm::vec3 upper = alongX ? glm::vec3(a1, y1, across + half) : glm::vec3(across + half, y1, a1);
+        addBox(mesh, lower, upper, kMazeTessellation);
+    };
+    if (!door) {
+        box(from, to, 0.0f, kMazeHeight);
+        return;
+    }
+    const float left = *door - 0.5f * kDoorWidth, right = *door + 0.5f * kDoorWidth;
+    box(from, left, 0.0f, kMazeHeight);
+    box(right, to, 0.0f, kMazeHeight);
+    box(left, right, kDoorHeight, kMazeHeight); // lintel
+}
+
+// Walls on the x = const lines run the full cell length (and past the maze's ends by half a
+// wall); walls on z = const lines stop at their faces, so no two boxes overlap.
+void addMazeWalls(const MazeLayout& layout, Mesh& outer, Mesh& alongZ, Mesh& alongX)
+{
+    const float half = 0.5f * kMazeWall;
+    for (int line = 0; line <= kMazeColumns; ++line) {
+        for (int row = 0; row < kMazeRows; ++row) {
+            const glm::vec3 corner = mazeCellOrigin(line, row);
+            const float from = corner.z - (row == 0 ? half : 0.0f);
+            const float to = corner.z + kMazeCell + (row == kMazeRows - 1 ? half : 0.0f);
+            const bool boundary = line == 0 || line == kMazeColumns;
+            std::optional<float> door;
+            if (!boundary) {
+                if (const auto offset = layout.eastDoor[mazeCell(line - 1, row)]) door = corner.z + *offset;
+            }
+            addMazeWall(boundary ? outer : alongZ, false, corner.x, from, to, door);
+        }
+    }
+    for (int line = 0; line <= kMazeRows; ++line) {
+        for (int column = 0; column < kMazeColumns; ++column) {
+            const glm::vec3 corner = mazeCellOrigin(column, line);
+            const bool boundary = line == 0 || line == kMazeRows;
+            std::optional<float> door;
+            if (!boundary) {
+                if (const auto offset = layout.southDoor[mazeCell(column, line - 1)]) door = corner.x + *offset;
+            }
+            addMazeWall(boundary ? outer : alongX, true, corner.z, corner.x + half, corner.x + kMazeCell - half, door);
+        }
+    }
+}
+
+// A point `inset` metres from the walls in corner `corner` (bit 0: high x, bit 1: high z) of a cell.
+glm::vec3 mazeCorner(int column, int row, int corner, float inset)
+{
+    const float x = (corner & 1) ? kMazeCell - inset : inset;
+    const float z = (corner & 2) ? kMazeCell - inset : inset;
+    return mazeCellOrigin(column, row) + glm::vec3(x, 0.0f, z);
+}
+
+// Furniture: one mesh each in object space, placed by instances. Corners of a room: columns on
+// one diagonal, a pedestal with a glossy sphere and a turned crate on the other. Doors are 2-4 m
+// along the walls, so none of this blocks a doorway or the line of sight straight through it.
+void addMazeFurniture(Scene& scene, std::mt19937& engine, int stone, int glossy, int wood)
+{
+    Mesh column = newMesh("column", stone);
+    addCylinder(column, glm::vec3(0.0f), 0.25f, kMazeHeight, 64, 12, false); // floor to ceiling: no caps
+    Mesh glossyColumn = column;
+    glossyColumn.name = "column_glossy";
+    glossyColumn.material = glossy;
+    Mesh pedestal = newMesh("pedestal", stone);
+    addBox(pedestal, glm::vec3(-0.3f, 0.0f, -0.3f), glm::vec3(0.3f, 1.0f, 0.3f), 0.1f);
+    Mesh sphere = newMesh("sphere", glossy);
+    addSphere(sphere, glm::vec3(0.0f, 1.35f, 0.0f), 0.35f, 24, 48, false);
+    Mesh crate = newMesh("crate", wood);
+    addBox(crate, glm::vec3(-0.4f, 0.0f, -0.4f), glm::vec3(0.4f, 0.8f, 0.4f), 0.1f);
+
+    const int columnMesh = addMesh(scene, std::move(column));
+    const int glossyColumnMesh = addMesh(scene, std::move(glossyColumn));
+    const int pedestalMesh = addMesh(scene, std::move(pedestal));
+    const int sphereMesh = addMesh(scene, std::move(sphere));
+    const int crateMesh = addMesh(scene, std::move(crate));
+    auto at = [](const glm::vec3& position) { return glm::translate(glm::mat4(1.0f), position); };
+    for (int row = 0; row < kMazeRows; ++row) {
+        for (int c = 0; c < kMazeColumns; ++c) {
+            const int corner = static_cast<int>(engine() % 4);
+            for (int k : {corner, corner ^ 3}) {
+                const int mesh = engine() % 3 == 0 ? glossyColumnMesh : columnMesh;
+                addInstance(scene, mesh, at(mazeCorner(c, row, k, 0.8f)));
+            }
+            const glm::mat4 pedestalAt = at(mazeCorner(c, row, corner ^ 1, 1.5f));
+            addInstance(scene, pedestalMesh, pedestalAt);
+            addInstance(scene, sphereMesh, pedestalAt);
+            const float angle = glm::radians(static_cast<float>(engine() % 90));
+            addInstance(scene, crateMesh,
+                        glm::rotate(at(mazeCorner(c, row, corner ^ 2, 1.4f)), angle, glm::vec3(0.0f, 1.0f, 0.0f)));
+        }
+    }
+}
+
+struct MazeLamp {
+    int column;
+    int row;
+    float intensity; // [W/sr]
+    glm::vec3 color;
+};
+
+// Lamps in 8 of the 20 rooms, spread over the maze; the other rooms are lit only indirectly.
+const std::array<MazeLamp, 8> kMazeLamps{{
+    {0, 0, 30.0f, {1.0f, 0.78f, 0.55f}},
+    {2, 0, 25.0f, {0.65f, 0.8f, 1.0f}},
+    {4, 1, 35.0f, {1.0f, 0.85f, 0.65f}},
+    {1, 2, 20.0f, {1.0f, 0.75f, 0.5f}},
+    {3, 2, 40.0f, {0.7f, 0.85f, 1.0f}},
+    {0, 3, 25.0f, {1.0f, 0.9f, 0.75f}},
+    {2, 3, 30.0f, {0.75f, 0.9f, 1.0f}},
+    {4, 3, 35.0f, {1.0f, 0.8f, 0.6f}},
+}};
+
+constexpr float kLampHeight = 2.6f;
+
+bool mazeCellIsLit(int column, int row)
+{
+    return std::any_of(kMazeLamps.begin(), kMazeLamps.end(),
+                       [&](const MazeLamp& lamp) { return lamp.column == column && lamp.row == row; });
+}
+
+// A doorway seen from one of its two rooms.
+struct MazeDoor {
+    glm::vec3 centre;  // on the floor, in the middle of the wall
+    glm::vec3 through; // unit direction from this room into the next
+    int nextColumn;
+    int nextRow;
+};
+
+// The doorways of a cell, in the order east, west, south, north.
+std::vector<MazeDoor> mazeDoors(const MazeLayout& layout, int column, int row)
+{
+    std::vector<MazeDoor> doors;
+    const glm::vec3 origin = mazeCellOrigin(column, row);
+    if (column + 1 < kMazeColumns) {
+        if (const auto offset = layout.eastDoor[mazeCell(column, row)])
+            doors.push_back({origin + glm::vec3(kMazeCell, 0.0f, *offset), {1.0f, 0.0f, 0.0f}, column + 1, row});
+    }
+    if (column > 0) {
+        if (const auto offset = layout.eastDoor[mazeCell(column - 1, row)])
+            doors.push_back({origin + glm::vec3(0.0f, 0.0f, *offset), {-1.0f, 0.0f, 0.0f}, column - 1, row});
+    }
+    if (row + 1 < kMazeRows) {
+        if (const auto offset = layout.southDoor[mazeCell(column, row)])
+            doors.push_back({origin + glm::vec3(*offset, 0.0f, kMazeCell), {0.0f, 0.0f, 1.0f}, column, row + 1});
+    }
+    if (row > 0) {
+        if (const auto offset = layout.southDoor[mazeCell(column, row - 1)])
+            doors.push_back({origin + glm::vec3(*offset, 0.0f, 0.0f), {0.0f, 0.0f, -1.0f}, column, row - 1});
+    }
+    return doors;
+}
+
+// A camera at eye height 1.5 m from the wall opposite a door, looking through the door into the
+// next room.
+Camera makeDoorCamera(const std::string& name, const MazeDoor& door)
+{
+    return makeCamera(name, door.centre - (kMazeCell - 1.5f) * door.through + glm::vec3(0.0f, 1.6f, 0.0f),
+                      door.centre + 3.0f * door.through + glm::vec3(0.0f, 1.3f, 0.0f), 60.0f, 0.05f, 100.0f);
+}
+
+Scene makeMaze()
+{
+    Scene scene = newScene("maze");
+    const int floorMaterial = addMaterial(scene, "floor", glm::vec3(0.42f, 0.33f, 0.24f));
+    const int ceilingMaterial = addMaterial(scene, "ceiling", glm::vec3(0.8f, 0.79f, 0.76f));
+    const int plaster = addMaterial(scene, "wall_plaster", glm::vec3(0.75f, 0.72f, 0.65f));
+    const int sage = addMaterial(scene, "wall_sage", glm::vec3(0.45f, 0.55f, 0.42f));
+    const int terracotta = addMaterial(scene, "wall_terracotta", glm::vec3(0.65f, 0.38f, 0.28f));
+    const int stone = addMaterial(scene, "stone", glm::vec3(0.6f, 0.58f, 0.55f));
+    const int wood = addMaterial(scene, "wood", glm::vec3(0.5f, 0.35f, 0.2f));
+    const int glossy = addMaterial(scene, "lacquer", glm::vec3(0.2f, 0.3f, 0.6f), 0.3f, 1.0f);
+
+    std::mt19937 engine(kMazeSeed);
+    const MazeLayout layout = makeMazeLayout(engine);
+
+    // Floor and ceiling reach the outer faces of the outer walls.
+    const glm::vec3 lower = mazeCellOrigin(0, 0) - glm::vec3(0.5f * kMazeWall, 0.0f, 0.5f * kMazeWall);
+    const glm::vec3 size(kMazeColumns * kMazeCell + kMazeWall, 0.0f, kMazeRows * kMazeCell + kMazeWall);
+    Mesh floor = newMesh("floor", floorMaterial);
+    addRect(floor, lower, glm::vec3(0.0f, 0.0f, size.z), glm::vec3(size.x, 0.0f, 0.0f), kMazeTessellation); // faces up
+    Mesh ceiling = newMesh("ceiling", ceilingMaterial);
+    addRect(ceiling, lower + glm::vec3(0.0f, kMazeHeight, 0.0f), glm::vec3(size.x, 0.0f, 0.0f),
+            glm::vec3(0.0f, 0.0f, size.z), kMazeTessellation); // faces down
+    placeMesh(scene, std::move(floor));
+    placeMesh(scene, std::move(ceiling));
+
+    Mesh outer = newMesh("walls_outer", plaster), alongZ = newMesh("walls_z", sage),
+         alongX = newMesh("walls_x", terracotta);
+    addMazeWalls(layout, outer, alongZ, alongX);
+    placeMesh(scene, std::move(outer));
+    placeMesh(scene, std::move(alongZ));
+    placeMesh(scene, std::move(alongX));
+
+    addMazeFurniture(scene, engine, stone, glossy, wood);
+
+    for (std::size_t i = 0; i < kMazeLamps.size(); ++i) {
+        const MazeLamp& lamp = kMazeLamps[i];
+        const glm::vec3 position =
+            mazeCellOrigin(lamp.column, lamp.row) + glm::vec3(0.5f * kMazeCell, kLampHeight, 0.5f * kMazeCell);
+        scene.lights.push_back(makePointLight("lamp" + std::to_string(i), position, lamp.color, lamp.intensity));
+    }
+
+    // "default": the first lamp's room, looking through its first door. "unlit": the first room
+    // without a lamp that has a door into a lit room, looking into the lit room.
+    scene.cameras.push_back(makeDoorCamera("default", mazeDoors(layout, kMazeLamps[0].column, kMazeLamps[0].row)[0]));
+    for (int row = 0; row < kMazeRows && scene.cameras.size() < 2; ++row) {
+        for (int column = 0; column < kMazeColumns && scene.cameras.size() < 2; ++column) {
+            if (mazeCellIsLit(column, row)) continue;
+            for (const MazeDoor& door : mazeDoors(layout, column, row)) {
+                if (!mazeCellIsLit(door.nextColumn, door.nextRow)) continue;
+                scene.cameras.push_back(makeDoorCamera("unlit", door));
+                break;
+            }
+        }
+    }
+    scene.validate();
+    return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
+// street
+
+constexpr float kStreetHalfLength = 80.0f; // the street runs along z from -80 to 80 m
+constexpr float kRoadHalfWidth = 6.0f;     // 12 m of asphalt
+constexpr float kSidewalkWidth = 3.0f;
+constexpr float kCurbHeight = 0.15f;
+constexpr float kFacadeX = kRoadHalfWidth + kSidewalkWidth; // building fronts at |x| = 9 m
+constexpr float kStoreyHeight = 3.5f;
+constexpr float kStreetTessellation = 2.0f;
+constexpr std::uint32_t kStreetSeed = 7u;
+
+struct StreetMeshes {
+    std::vector<Mesh> facades; // one per facade colour
+    Mesh trim;                 // ledges, sills, cornices
+    Mesh glass;                // the glossy windows
+};
+
+// Builds boxes relative to a building's street facade: `along` is z, `up` is y and `out` is the
+// distance in front of the facade (towards the street) or, negative, behind it.
+struct FacadeFrame {
+    float side; // -1: the -x side of the street (facade faces +x), +1: the +x side
+
+    void box(Mesh& mesh, float along0, float along1, float up0, float up1, float out0, float out1) const
+    {
+        const float x0 = side * (kFacadeX - out0), x1 = side * (kFacadeX - out1);
+        addBox(mesh, glm::vec3(std::min(x0, x1), up0, along0), glm::vec3(std::max(x0, x1), up1, along1),
+               kStreetTessellation);
+    }
+};
+
+// One building: the block, a glass shop front, storeys of windows with sills between ledges,
+// and a cornice. Everything protrudes from the block, so no face is coplanar with a visible one.
+void addBuilding(StreetMeshes& meshes, std::mt19937& engine, float side, float z0, float width)
+{
+    const FacadeFrame frame{side};
+    const float height = 10.0f + static_cast<float>(engine() % 31);
+    const float depth = 14.0f + static_cast<float>(engine() % 7);
+    Mesh& facade = meshes.facades[engine() % meshes.facades.size()];
+    const float z1 = z0 + width;
+    frame.box(facade, z0, z1, 0.0f, height, -depth, 0.0f);
+
+    const int storeys = static_cast<int>(height / kStoreyHeight);
+    const int bays = std::max(1, static_cast<int>(width / 2.5f));
+    const float bay = width / static_cast<float>(bays);
+    frame.box(meshes.glass, z0 + 0.15f * width, z1 - 0.15f * width, 0.4f, 3.0f, 0.0f, 0.04f); // shop front
+    for (int storey = 1; storey < storeys; ++storey) {
+        const float floorY = storey * kStoreyHeight;
+        frame.box(meshes.trim, z0, z1, floorY - 0.1f, floorY + 0.1f, 0.0f, 0.25f); // ledge
+        for (int b = 0; b < bays; ++b) {
+            const float centre = z0 + (static_cast<float>(b) + 0.5f) * bay;
+            frame.box(meshes.glass, centre - 0.6f, centre + 0.6f, floorY + 0.9f, floorY + 2.5f, 0.0f, 0.04f);
+            frame.box(meshes.trim, centre - 0.7f, centre + 0.7f, floorY + 0.8f, floorY + 0.9f, 0.0f, 0.15f); // sill
+        }
+    }
+    frame.box(meshes.trim, z0, z1, height - 0.5f, height, 0.0f, 0.4f); // cornice
+}
+
+void addStreetProps(Mesh& poles, Mesh& bark, Mesh& foliage, Mesh& benches)
+{
+    // Alternating street lamps and trees near both curbs, benches between them.
+    int index = 0;
+    for (float z = -kStreetHalfLength + 8.0f; z < kStreetHalfLength; z += 16.0f, ++index) {
+        for (float side : {-1.0f, 1.0f}) {
+            const float x = side * (kRoadHalfWidth + 0.6f);
+            if ((index + (side > 0.0f ? 1 : 0)) % 2 == 0) {
+                addCylinder(poles, glm::vec3(x, kCurbHeight, z), 0.08f, 6.0f, 12, 3, true);
+                const float armX = side * (kRoadHalfWidth - 0.6f);
+                addBox(poles, glm::vec3(std::min(x, armX), 6.0f, z - 0.08f),
+                       glm::vec3(std::max(x, armX), 6.15f, z + 0.08f), kStreetTessellation);
+                addBox(poles, glm::vec3(armX - 0.25f, 5.9f, z - 0.2f), glm::vec3(armX + 0.25f, 6.05f, z + 0.2f),
+                       kStreetTessellation);
+            } else {
+                addCylinder(bark, glm::vec3(x, kCurbHeight, z), 0.15f, 3.0f, 12, 3, true);
+                addSphere(foliage, glm::vec3(x, kCurbHeight + 4.2f, z), 1.6f, 12, 24, false);
+            }
+            const float benchX = side * (kFacadeX - 1.0f);
+            addBox(benches, glm::vec3(benchX - 0.25f, kCurbHeight, z + 4.0f),
+                   glm::vec3(benchX + 0.25f, kCurbHeight + 0.45f, z + 6.0f), kStreetTessellation);
+        }
+    }
+}
+
+Scene makeStreet()
+{
+    Scene scene = newScene("street");
+    const int asphalt = addMaterial(scene, "asphalt", glm::vec3(0.1f));
+    const int sidewalk = addMaterial(scene, "sidewalk", glm::vec3(0.35f, 0.34f, 0.32f));
+    const int ground = addMaterial(scene, "ground", glm::vec3(0.22f, 0.21f, 0.19f));
+    const int trim = addMaterial(scene, "trim", glm::vec3(0.3f, 0.29f, 0.27f));
+    const int glass = addMaterial(scene, "glass", glm::vec3(0.05f, 0.06f, 0.07f), 0.25f, 1.0f);
+    const int metal = addMaterial(scene, "pole", glm::vec3(0.15f));
+    const int barkMaterial = addMaterial(scene, "bark", glm::vec3(0.25f, 0.18f, 0.12f));
+    const int foliageMaterial = addMaterial(scene, "foliage", glm::vec3(0.12f, 0.3f, 0.08f));
+    const int woodMaterial = addMaterial(scene, "bench", glm::vec3(0.45f, 0.3f, 0.18f));
+
+    StreetMeshes meshes{{}, newMesh("trim", trim), newMesh("glass", glass)};
+    const std::array<std::pair<const char*, glm::vec3>, 4> facadeColours{{
+        {"facade_cream", {0.7f, 0.64f, 0.52f}},
+        {"facade_brick", {0.45f, 0.22f, 0.15f}},
+        {"facade_grey", {0.5f, 0.5f, 0.5f}},
+        {"facade_ochre", {0.62f, 0.45f, 0.25f}},
+    }};
+    for (const auto& [name, albedo] : facadeColours)
+        meshes.facades.push_back(newMesh(name, addMaterial(scene, name, albedo)));
+
+    std::mt19937 engine(kStreetSeed);
+    for (float side : {-1.0f, 1.0f}) {
+        float z = -kStreetHalfLength;
+        while (z < kStreetHalfLength - 8.0f) {
+            if (engine() % 6 == 0) z += 4.0f; // an alley
+            const float width = std::min(8.0f + static_cast<float>(engine() % 13), kStreetHalfLength - z);
+            if (width < 8.0f) break;
+            addBuilding(meshes, engine, side, z, width);
+            z += width;
+        }
+    }
+
+    // Ground: asphalt between the curbs, raised sidewalks, and a wide plane around (four pieces,
+    // so nothing overlaps the asphalt).
+    Mesh road = newMesh("road", asphalt);
+    addRect(road, glm::vec3(-kRoadHalfWidth, 0.0f, -kStreetHalfLength), glm::vec3(0.0f, 0.0f, 2.0f * kStreetHalfLength),
+            glm::vec3(2.0f * kRoadHalfWidth, 0.0f, 0.0f), kStreetTessellation);
+    Mesh walks = newMesh("sidewalks", sidewalk);
+    for (float side : {-1.0f, 1.0f}) {
+        const float x0 = side * kRoadHalfWidth, x1 = side * kFacadeX;
+        addBox(walks, glm::vec3(std::min(x0, x1), 0.0f, -kStreetHalfLength),
+               glm::vec3(std::max(x0, x1), kCurbHeight, kStreetHalfLength), kStreetTessellation);
+    }
+    Mesh plane = newMesh("ground", ground);
+    constexpr float kGroundHalf = 250.0f, kGroundCell = 10.0f;
+    const glm::vec3 alongZ(0.0f, 0.0f, 1.0f), alongX(1.0f, 0.0f, 0.0f); // z cross x = +y: faces up
+    addRect(plane, glm::vec3(-kGroundHalf, 0.0f, -kGroundHalf), 2.0f * kGroundHalf * alongZ,
+            (kGroundHalf - kRoadHalfWidth) * alongX, kGroundCell);
+    addRect(plane, glm::vec3(kRoadHalfWidth, 0.0f, -kGroundHalf), 2.0f * kGroundHalf * alongZ,
+            (kGroundHalf - kRoadHalfWidth) * alongX, kGroundCell);
+    for (float z0 : {-kGroundHalf, kStreetHalfLength})
+        addRect(plane, glm::vec3(-kRoadHalfWidth, 0.0f, z0), (kGroundHalf - kStreetHalfLength) * alongZ,
+                2.0f * kRoadHalfWidth * alongX, kGroundCell);
+
+    Mesh poles = newMesh("lamp_posts", metal), bark = newMesh("tree_trunks", barkMaterial),
+         foliage = newMesh("tree_crowns", foliageMaterial), benches = newMesh("benches", woodMaterial);
+    addStreetProps(poles, bark, foliage, benches);
+
+    for (Mesh& facade : meshes.facades) placeMesh(scene, std::move(facade));
+    for (Mesh* mesh : {&meshes.trim, &meshes.glass, &road, &walks, &plane, &poles, &bark, &foliage, &benches})
+        placeMesh(scene, std::move(*mesh));
+
+    // The sun at 40 degrees elevation on the +x side (and somewhat towards +z): its light travels
+    // across the street towards -x, so the +x side's facades (facing -x) and most of the street lie
+    // in shadow while the upper floors of the -x side are sunlit.
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    const float elevation = glm::radians(40.0f);
+    const glm::vec3 horizontal = glm::normalize(glm::vec3(-1.0f, 0.0f, -0.8f));
+    sun.direction = glm::normalize(std::cos(elevation) * horizontal + glm::vec3(0.0f, -std::sin(elevation), 0.0f));
+    sun.color = glm::vec3(1.0f, 0.88f, 0.72f);
+    sun.intensity = 4.5f; // irradiance [W/m^2] on a surface facing the sun
+    scene.lights.push_back(sun);
+
+    scene.cameras.push_back(
+        makeCamera("default", glm::vec3(-2.5f, 1.7f, 70.0f), glm::vec3(1.0f, 4.0f, 0.0f), 60.0f, 0.1f, 800.0f));
+    scene.cameras.push_back(
+        makeCamera("aerial", glm::vec3(90.0f, 120.0f, 140.0f), glm::vec3(0.0f), 50.0f, 1.0f, 1000.0f));
+    scene.validate();
+    return scene;
+}
+
+} // namespace
+
+std::vector<std::string> builtinSceneNames()
+{
+    return {"cornell", "furnace", "maze", "street"};
+}
+
+bool isBuiltinScene(const std::string& name)
+{
+    const std::vector<std::string> names = builtinSceneNames();
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+Scene makeBuiltinScene(const std::string& name)
+{
+    if (name == "cornell") return makeCornell();
+    if (name == "furnace") return makeFurnace(FurnaceParams{});
+    if (name == "maze") return makeMaze();
+    if (name == "street") return makeStreet();
+    std::string known;
+    for (const std::string& builtin : builtinSceneNames()) known += (known.empty() ? "" : ", ") + builtin;
+    throw Error("unknown scene \"" + name + "\" (built-in scenes: " + known + ")");
+}
+
+Scene makeFurnace(const FurnaceParams& params)
+{
+    require(params.radius > 0.0f && params.rings >= 2 && params.segments >= 3,
+            "furnace: need radius > 0, rings >= 2, segments >= 3");
+    Scene scene = newScene("furnace");
+    const int wall = addMaterial(scene, "wall", glm::vec3(params.albedo));
+    Mesh sphere = newMesh("sphere", wall);
+    addSphere(sphere, glm::vec3(0.0f), params.radius, params.rings, params.segments, true);
+    placeMesh(scene, std::move(sphere));
+    scene.lights.push_back(makePointLight("center", glm::vec3(0.0f), glm::vec3(1.0f), params.intensity));
+    scene.cameras.push_back(
+        makeCamera("default", glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), 60.0f, 0.01f, 4.0f * params.radius));
+    scene.validate();
+    return scene;
+}
+
+double furnaceRadianceBounce(const FurnaceParams& params, int n)
+{
+    // n = 0 would be the walls' own emission, which is zero; the point light is not seen.
+    if (n <= 0) return 0.0;
+    const double r = params.radius;
+    return std::pow(static_cast<double>(params.albedo), n) * params.intensity / (kPiDouble * r * r);
+}
+
+double furnaceRadianceAll(const FurnaceParams& params)
+{
+    // The series diverges for rho >= 1 (no absorption).
+    if (params.albedo >= 1.0f) return HUGE_VAL;
+    const double rho = params.albedo, r = params.radius;
+    return rho * params.intensity / (kPiDouble * r * r * (1.0 - rho));
+}
+
+} // namespace vplgi

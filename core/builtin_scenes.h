@@ -1,0 +1,31 @@
+// Scenes vplgi generates itself (no external assets): cornell, furnace, maze, street.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace vplgi {
+
+std::vector<std::string> builtinSceneNames();
+bool isBuiltinScene(const std::string& name);
+// Throws Error for an unknown name.
+Scene makeBuiltinScene(const std::string& name);
+
+// The furnace: the inside of a closed sphere of radius R with Lambertian albedo rho, an isotropic
+// point light of intensity I0 at the centre (MATH.md section 3). Closed forms below.
+struct FurnaceParams {
+    float radius = 1.0f;            // R [m]
+    float albedo = 0.5f;            // rho, grey
+    float intensity = 3.14159265f;  // I0 [W/sr]; with rho = 0.5, R = 1: L_all = 1 (pbrt's test)
+    int rings = 96;                 // latitude segments of the tessellation
+    int segments = 192;             // longitude segments
+};
+Scene makeFurnace(const FurnaceParams& params);
+// Radiance after exactly n reflections, L_n = rho^n I0 / (pi R^2).
+double furnaceRadianceBounce(const FurnaceParams& params, int n);
+// All bounces, L_all = rho I0 / (pi R^2 (1 - rho)).
+double furnaceRadianceAll(const FurnaceParams& params);
+
+} // namespace vplgi

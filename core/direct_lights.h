@@ -1,0 +1,26 @@
+// The direct-light emitter list shared by the GPU direct pass and the CPU evaluations: scene lights
+// become PointEmitters / DirectionalEmitters (glsl/shared/lights.h); emissive triangles are
+// represented by `emitterSamples` cosine-emitting point samples, stratified by power.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "../glsl/shared/lights.h"
+#include "scene.h"
+
+namespace vplgi {
+
+struct DirectLightParams {
+    int emitterSamples = 64;   // point samples representing all emissive triangles together
+    std::uint32_t seed = 1;    // sample placement seed
+};
+
+struct DirectLightSet {
+    std::vector<shared::PointEmitter> points;
+    std::vector<shared::DirectionalEmitter> directionals;
+};
+
+DirectLightSet buildDirectLights(const Scene& scene, const DirectLightParams& params);
+
+} // namespace vplgi

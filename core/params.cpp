@@ -1,0 +1,147 @@
+#include "params.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "error.h"
+
+namespace vplgi {
+
+std::pair<std::string, std::string> parseSetting(const std::string& text)
+{
+    std::size_t eq = text.find('=');
+    require(eq != std::string::npos && eq > 0, "--set \"" + text + "\": expected key=value");
+    return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+ParamSetter::ParamSetter(Settings settings)
+    : mSettings(std::move(settings))
+{
+}
+
+const std::string* ParamSetter::find(const std::string& key)
+{
+    mKnown.push_back(key);
+    const std::string* found = nullptr;
+    for (const auto& [k, v] : mSettings)
+        if (k == key) found = &v;
+    if (found) mUsed.insert(key);
+    return found;
+}
+
+namespace {
+
+double parseNumber(const std::string& key, const std::string& text)
+{
+    errno = 0;
+    char* end = nullptr;
+    double value = std::strtod(text.c_str(), &end);
+    require(!text.empty() && end == text.c_str() + text.size() && errno == 0 && std::isfinite(value),
+            "parameter " + key + ": \"" + text + "\" is not a number");
+    return value;
+}
+
+template <typename T>
+std::string rangeText(T min, T max)
+{
+    std::ostringstream s;
+    s << "[" << min << ", " << max << "]";
+    return s.str();
+}
+
+} // namespace
+
+void ParamSetter::field(const std::string& key, float& value, float min, float max, const char*)
+{
+    if (const std::string* text = find(key)) {
+        double v = parseNumber(key, *text);
+        require(v >= min && v <= max, "parameter " + key + " = " + *text + " is outside " + rangeText(min, max));
+        value = static_cast<float>(v);
+    }
+}
+
+void ParamSetter::field(const std::string& key, int& value, int min, int max, const char*)
+{
+    if (const std::string* text = find(key)) {
+        double v = parseNumber(key, *text);
+        require(v == std::floor(v), "parameter " + key + ": \"" + *text + "\" is not an integer");
+        require(v >= min && v <= max, "parameter " + key + " = " + *text + " is outside " + rangeText(min, max));
+        value = static_cast<int>(v);
+    }
+}
+
+void ParamSetter::field(const std::string& key, bool& value, const char*)
+{
+    if (const std::string* text = find(key)) {
+        if (*text == "1" || *text == "true" || *text == "on") value = true;
+        else if (*text == "0" || *text == "false" || *text == "off") value = false;
+        else throw Error("parameter " + key + ": \"" + *text + "\" is not a boolean (true/false)");
+    }
+}
+
+void ParamSetter::field(const std::string& key, std::uint32_t& value, const char*)
+{
+    if (const std::string* text = find(key)) {
+        double v = parseNumber(key, *text);
+        require(v == std::floor(v) && v >= 0.0 && v <= 4294967295.0,
+                "parameter " + key + ": \"" + *text + "\" is not an unsigned 32-bit integer");
+        value = static_cast<std::uint32_t>(v);
+    }
+}
+
+void ParamSetter::finish() const
+{
+    for (const auto& setting : mSettings) {
+        if (mUsed.count(setting.first)) continue;
+        std::string known;
+        for (const std::string& k : mKnown) known += (known.empty() ? "" : ", ") + k;
+        throw Error("unknown parameter \"" + setting.first + "\" (known: " + known + ")");
+    }
+}
+
+namespace {
+
+template <typename T>
+std::string valueText(T value)
+{
+    std::ostringstream s;
+    s << value;
+    return s.str();
+}
+
+} // namespace
+
+void ParamDumper::field(const std::string& key, float& value, float min, float max, const char* doc)
+{
+    mValues[key] = valueText(value);
+    mLines.push_back(key + " = " + mValues[key] + "  # " + doc + " " + rangeText(min, max));
+}
+
+void ParamDumper::field(const std::string& key, int& value, int min, int max, const char* doc)
+{
+    mValues[key] = valueText(value);
+    mLines.push_back(key + " = " + mValues[key] + "  # " + doc + " " + rangeText(min, max));
+}
+
+void ParamDumper::field(const std::string& key, bool& value, const char* doc)
+{
+    mValues[key] = value ? "true" : "false";
+    mLines.push_back(key + " = " + mValues[key] + "  # " + doc);
+}
+
+void ParamDumper::field(const std::string& key, std::uint32_t& value, const char* doc)
+{
+    mValues[key] = valueText(value);
+    mLines.push_back(key + " = " + mValues[key] + "  # " + doc);
+}
+
+std::string ParamDumper::text() const
+{
+    std::string out;
+    for (const std::string& line : mLines) out += line + "\n";
+    return out;
+}
+
+} // namespace vplgi

@@ -1,0 +1,60 @@
+// One field list per parameter struct (visitParams) feeds the CLI (--set key=value), scene files,
+// the viewer UI and the configuration dump printed with every render and report.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace vplgi {
+
+using Settings = std::vector<std::pair<std::string, std::string>>; // "key" -> "value", in order
+
+class ParamVisitor {
+public:
+    virtual ~ParamVisitor() = default;
+    virtual void field(const std::string& key, float& value, float min, float max, const char* doc) = 0;
+    virtual void field(const std::string& key, int& value, int min, int max, const char* doc) = 0;
+    virtual void field(const std::string& key, bool& value, const char* doc) = 0;
+    virtual void field(const std::string& key, std::uint32_t& value, const char* doc) = 0;
+};
+
+// Applies "key=value" settings to the fields it visits. Values out of range or unparsable throw
+// Error naming the key. Call finish() after visiting everything: unknown keys throw there.
+class ParamSetter final : public ParamVisitor {
+public:
+    explicit ParamSetter(Settings settings);
+    void field(const std::string& key, float& value, float min, float max, const char* doc) override;
+    void field(const std::string& key, int& value, int min, int max, const char* doc) override;
+    void field(const std::string& key, bool& value, const char* doc) override;
+    void field(const std::string& key, std::uint32_t& value, const char* doc) override;
+    void finish() const;
+
+private:
+    const std::string* find(const std::string& key);
+    Settings mSettings; // later entries win
+    std::set<std::string> mUsed;
+    std::vector<std::string> mKnown;
+};
+
+// Collects "key = value  # doc [min, max]" lines (the effective configuration).
+class ParamDumper final : public ParamVisitor {
+public:
+    void field(const std::string& key, float& value, float min, float max, const char* doc) override;
+    void field(const std::string& key, int& value, int min, int max, const char* doc) override;
+    void field(const std::string& key, bool& value, const char* doc) override;
+    void field(const std::string& key, std::uint32_t& value, const char* doc) override;
+    std::string text() const;                              // one line per field
+    const std::map<std::string, std::string>& values() const { return mValues; }
+
+private:
+    std::vector<std::string> mLines;
+    std::map<std::string, std::string> mValues;
+};
+
+// Splits "key=value"; throws Error for a missing '=' or empty key.
+std::pair<std::string, std::string> parseSetting(const std::string& text);
+
+} // namespace vplgi

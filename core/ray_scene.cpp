@@ -1,0 +1,125 @@
+#include "ray_scene.h"
+
+#include <algorithm>
+#include <string>
+
+#include <embree3/rtcore.h>
+
+#include "error.h"
+
+namespace vplgi {
+
+struct RayScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    ~Impl()
+    {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+
+void throwOnDeviceError(RTCDevice device, const char* what)
+{
+    RTCError error = rtcGetDeviceError(device);
+    require(error == RTC_ERROR_NONE, std::string("Embree: ") + what + " failed (error " + std::to_string(int(error)) + ")");
+}
+
+} // namespace
+
+RayScene::RayScene(const Scene& scene) : mScene(scene), mImpl(std::make_unique<Impl>())
+{
+    mImpl->device = rtcNewDevice(nullptr);
+    require(mImpl->device != nullptr, "Embree: cannot create a device");
+    mImpl->scene = rtcNewScene(mImpl->device);
+    rtcSetSceneBuildQuality(mImpl->scene, RTC_BUILD_QUALITY_HIGH);
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        const Mesh& mesh = scene.meshes[instance.mesh];
+        RTCGeometry geometry = rtcNewGeometry(mImpl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangleCount()));
+        throwOnDeviceError(mImpl->device, "allocating geometry buffers");
+        for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+            glm::vec3 p = glm::vec3(instance.worldFromObject * glm::vec4(mesh.vertices[v].position, 1.0f));
+            vertices[3 * v + 0] = p.x;
+            vertices[3 * v + 1] = p.y;
+            vertices[3 * v + 2] = p.z;
+        }
+        std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometryByID(mImpl->scene, geometry, static_cast<unsigned>(i));
+        rtcReleaseGeometry(geometry);
+    }
+    rtcCommitScene(mImpl->scene);
+    AABB bounds = scene.worldBounds();
+    mSceneScale = bounds.empty() ? 1.0f : std::max(1e-3f, glm::length(bounds.extent()));
+    throwOnDeviceError(mImpl->device, "building the scene");
+}
+
+RayScene::~RayScene() = default;
+
+namespace {
+
+void fillRay(RTCRay& r, const Ray& ray)
+{
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = ray.tMin;
+    r.tfar = ray.tMax;
+    r.time = 0.0f;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+}
+
+} // namespace
+
+Hit RayScene::intersect(const Ray& ray) const
+{
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rayHit;
+    fillRay(rayHit.ray, ray);
+    rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(mImpl->scene, &context, &rayHit);
+    Hit hit;
+    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.t = rayHit.ray.tfar;
+    hit.instance = static_cast<int>(rayHit.hit.geomID);
+    hit.triangle = static_cast<int>(rayHit.hit.primID);
+    hit.barycentric = glm::vec2(rayHit.hit.u, rayHit.hit.v);
+    hit.geometricNormal = glm::vec3(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z);
+    return hit;
+}
+
+bool RayScene::occluded(const Ray& ray) const
+{
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    fillRay(r, ray);
+    rtcOccluded1(mImpl->scene, &context, &r);
+    return r.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+bool RayScene::visible(const glm::vec3& a, const glm::vec3& b) const
+{
+    Ray ray;
+    ray.origin = a;
+    ray.direction = b - a;
+    ray.tMin = 1e-4f;
+    ray.tMax = 1.0f - 1e-4f;
+    return !occluded(ray);
+}
+
+} // namespace vplgi

@@ -1,0 +1,31 @@
+// Turning a `--scene` argument into a core::Scene: a built-in generator name, a scene file
+// (scenes/<name>.json, see README "Scene format"), or a .gltf/.glb path.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene.h"
+
+namespace vplgi {
+
+// What a scene file adds beyond geometry: parameter overrides ("smcir.vplCount" -> "4096") and the
+// technique it selects by default. Parameters set on the command line win over these.
+struct SceneDescription {
+    Scene scene;
+    std::vector<std::pair<std::string, std::string>> settings;
+    std::string technique; // empty = the CLI default
+};
+
+// spec: a built-in name ("cornell"), a .json scene file, or a .gltf/.glb file. Throws Error.
+SceneDescription loadSceneSpec(const std::string& spec);
+
+// glTF 2.0 (tinygltf): nodes, meshes, materials + textures, KHR_lights_punctual,
+// KHR_materials_emissive_strength, KHR_materials_specular, cameras. Throws Error naming the file.
+Scene loadGltf(const std::string& path);
+
+// A scene file (JSON). Relative paths inside it are relative to the file.
+SceneDescription loadSceneFile(const std::string& path);
+
+} // namespace vplgi

@@ -1,0 +1,132 @@
+#include "surface.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vplgi {
+
+namespace {
+
+float srgbToLinear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+glm::vec4 texel(const Image& image, int x, int y, bool srgb)
+{
+    x = ((x % image.width) + image.width) % image.width;
+    y = ((y % image.height) + image.height) % image.height;
+    const std::uint8_t* p = &image.rgba[(static_cast<std::size_t>(y) * image.width + x) * 4];
+    glm::vec4 c(p[0], p[1], p[2], p[3]);
+    c /= 255.0f;
+    if (srgb) c = glm::vec4(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b), c.a);
+    return c;
+}
+
+} // namespace
+
+glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb)
+{
+    // Texel centres at (i + 0.5) / size, as GL_LINEAR with GL_REPEAT (decode before filtering, as GL
+    // does for sRGB textures).
+    float x = uv.x * image.width - 0.5f;
+    float y = uv.y * image.height - 0.5f;
+    int x0 = static_cast<int>(std::floor(x));
+    int y0 = static_cast<int>(std::floor(y));
+    float fx = x - x0, fy = y - y0;
+    glm::vec4 a = glm::mix(texel(image, x0, y0, srgb), texel(image, x0 + 1, y0, srgb), fx);
+    glm::vec4 b = glm::mix(texel(image, x0, y0 + 1, srgb), texel(image, x0 + 1, y0 + 1, srgb), fx);
+    return glm::mix(a, b, fy);
+}
+
+SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towardsViewer)
+{
+    const Instance& instance = scene.instances[hit.instance];
+    const Mesh& mesh = scene.meshes[instance.mesh];
+    const Material& m = scene.materials[mesh.material];
+    const Vertex& v0 = mesh.vertices[mesh.indices[3 * hit.triangle]];
+    const Vertex& v1 = mesh.vertices[mesh.indices[3 * hit.triangle + 1]];
+    const Vertex& v2 = mesh.vertices[mesh.indices[3 * hit.triangle + 2]];
+    const float w0 = 1.0f - hit.barycentric.x - hit.barycentric.y;
+    const float w1 = hit.barycentric.x, w2 = hit.barycentric.y;
+    const glm::mat3 normalFromObject = glm::transpose(glm::inverse(glm::mat3(instance.worldFromObject)));
+
+    SurfacePoint s;
+    s.materialIndex = mesh.material;
+    glm::vec3 pObject = w0 * v0.position + w1 * v1.position + w2 * v2.position;
+    s.position = glm::vec3(instance.worldFromObject * glm::vec4(pObject, 1.0f));
+    s.texcoord = w0 * v0.texcoord + w1 * v1.texcoord + w2 * v2.texcoord;
+    s.geometricNormal = glm::normalize(hit.geometricNormal);
+    glm::vec3 n = glm::normalize(normalFromObject * (w0 * v0.normal + w1 * v1.normal + w2 * v2.normal));
+
+    if (m.normalTexture.valid() && mesh.hasTangents) {
+        glm::vec4 t4 = w0 * v0.tangent + w1 * v1.tangent + w2 * v2.tangent;
+        glm::vec3 t = glm::normalize(glm::mat3(instance.worldFromObject) * glm::vec3(t4));
+        t = glm::normalize(t - n * glm::dot(n, t));
+        glm::vec3 b = glm::cross(n, t) * (t4.w < 0.0f ? -1.0f : 1.0f);
+        glm::vec3 tn = glm::vec3(sampleImage(scene.images[m.normalTexture.image], s.texcoord, false)) * 2.0f - 1.0f;
+        tn.x *= m.normalScale;
+        tn.y *= m.normalScale;
+        n = glm::normalize(t * tn.x + b * tn.y + n * tn.z);
+    }
+    // Double-sided materials are shaded on the side the viewer sees (as the G-buffer pass does).
+    if (m.doubleSided && glm::dot(s.geometricNormal, towardsViewer) < 0.0f) {
+        s.geometricNormal = -s.geometricNormal;
+        n = -n;
+    }
+    // Keep the geometric normal on the shading normal's side.
+    if (glm::dot(s.geometricNormal, n) < 0.0f) s.geometricNormal = -s.geometricNormal;
+    s.normal = n;
+
+    glm::vec4 base = m.baseColor;
+    if (m.baseColorTexture.valid()) base *= sampleImage(scene.images[m.baseColorTexture.image], s.texcoord, true);
+    float metallic = m.metallic, roughness = m.roughness;
+    if (m.metallicRoughnessTexture.valid()) {
+        glm::vec4 mr = sampleImage(scene.images[m.metallicRoughnessTexture.image], s.texcoord, false);
+        roughness *= mr.g;
+        metallic *= mr.b;
+    }
+    s.material.baseColor = glm::vec3(base);
+    s.material.metallic = metallic;
+    s.material.roughness = roughness;
+    s.material.specular = m.specular;
+    s.emission = m.emission;
+    if (m.emissionTexture.valid())
+        s.emission *= glm::vec3(sampleImage(scene.images[m.emissionTexture.image], s.texcoord, true));
+    return s;
+}
+
+glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights, const SurfacePoint& point,
+                              const glm::vec3& wo)
+{
+    const glm::vec3 origin = point.position + point.geometricNormal * (1e-4f * rays.sceneScale());
+    glm::vec3 radiance(0.0f);
+    for (const shared::PointEmitter& e : lights.points) {
+        glm::vec3 toLight = glm::vec3(e.positionProfile) - point.position;
+        float distance2 = glm::dot(toLight, toLight);
+        if (!(distance2 > 0.0f)) continue;
+        glm::vec3 wi = toLight / std::sqrt(distance2);
+        float cosine = glm::dot(point.normal, wi);
+        if (cosine <= 0.0f) continue;
+        float profile = shared::emitterProfile(e, -wi);
+        if (profile <= 0.0f) continue;
+        if (!rays.visible(origin, glm::vec3(e.positionProfile))) continue;
+        glm::vec3 f = shared::evaluateBRDF(point.material, point.normal, wo, wi);
+        radiance += f * glm::vec3(e.intensity) * profile * cosine / distance2;
+    }
+    for (const shared::DirectionalEmitter& d : lights.directionals) {
+        glm::vec3 wi = -glm::vec3(d.direction);
+        float cosine = glm::dot(point.normal, wi);
+        if (cosine <= 0.0f) continue;
+        Ray shadow;
+        shadow.origin = origin;
+        shadow.direction = wi;
+        shadow.tMin = 0.0f;
+        if (rays.occluded(shadow)) continue;
+        glm::vec3 f = shared::evaluateBRDF(point.material, point.normal, wo, wi);
+        radiance += f * glm::vec3(d.irradiance) * cosine;
+    }
+    return radiance;
+}
+
+} // namespace vplgi

@@ -1,0 +1,128 @@
+#include "gpu_scene.h"
+
+#include <cstddef>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "glsl/shared/bindings.h"
+
+namespace vplgi {
+
+namespace {
+
+gl::Texture makeTexture(const std::string& name, int width, int height, bool srgb, const std::uint8_t* rgba,
+                        bool flipRows)
+{
+    gl::TextureDesc desc;
+    desc.format = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    desc.width = width;
+    desc.height = height;
+    desc.levels = 0; // full mip chain
+    gl::Texture texture(name, desc);
+    // glTF images have their first row at v = 0 and GL samples row 0 at t = 0: upload as is.
+    (void)flipRows;
+    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glGenerateTextureMipmap(texture.id());
+    return texture;
+}
+
+} // namespace
+
+GpuScene::GpuScene(const Scene& scene) : mScene(scene)
+{
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const Mesh& mesh = scene.meshes[i];
+        MeshBuffers buffers;
+        const std::string name = "mesh " + std::to_string(i) + " " + mesh.name;
+        buffers.vertices = gl::Buffer(name + " vertices", static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(Vertex)),
+                                      mesh.vertices.data(), false);
+        buffers.indices = gl::Buffer(name + " indices", static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                                     mesh.indices.data(), false);
+        buffers.indexCount = static_cast<GLsizei>(mesh.indices.size());
+        buffers.vertexArray = gl::VertexArray(name);
+        GLuint vao = buffers.vertexArray.id();
+        glVertexArrayVertexBuffer(vao, 0, buffers.vertices.id(), 0, sizeof(Vertex));
+        glVertexArrayElementBuffer(vao, buffers.indices.id());
+        auto attribute = [vao](GLuint location, GLint size, std::size_t offset) {
+            glEnableVertexArrayAttrib(vao, location);
+            glVertexArrayAttribFormat(vao, location, size, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
+            glVertexArrayAttribBinding(vao, location, 0);
+        };
+        attribute(0, 3, offsetof(Vertex, position));
+        attribute(1, 3, offsetof(Vertex, normal));
+        attribute(2, 2, offsetof(Vertex, texcoord));
+        attribute(3, 4, offsetof(Vertex, tangent));
+        mMeshes.push_back(std::move(buffers));
+    }
+    const std::uint8_t white[4] = {255, 255, 255, 255};
+    const std::uint8_t flat[4] = {128, 128, 255, 255};
+    mWhite = makeTexture("default white", 1, 1, false, white, false);
+    mFlatNormal = makeTexture("default flat normal", 1, 1, false, flat, false);
+    gl::SamplerDesc samplerDesc;
+    samplerDesc.minFilter = GL_LINEAR_MIPMAP_LINEAR;
+    samplerDesc.wrap = GL_REPEAT;
+    samplerDesc.maxAnisotropy = 8.0f;
+    mMaterialSampler = gl::Sampler("material sampler", samplerDesc);
+    // Upload every image in the formats its materials use it in.
+    for (const Material& m : scene.materials) {
+        if (m.baseColorTexture.valid()) imageTexture(m.baseColorTexture.image, true);
+        if (m.emissionTexture.valid()) imageTexture(m.emissionTexture.image, true);
+        if (m.metallicRoughnessTexture.valid()) imageTexture(m.metallicRoughnessTexture.image, false);
+        if (m.normalTexture.valid()) imageTexture(m.normalTexture.image, false);
+    }
+}
+
+const gl::Texture& GpuScene::imageTexture(int image, bool srgb) const
+{
+    auto key = std::make_pair(image, srgb);
+    auto it = mImageTextures.find(key);
+    if (it != mImageTextures.end()) return it->second;
+    const Image& img = mScene.images[image];
+    auto& textures = const_cast<std::map<std::pair<int, bool>, gl::Texture>&>(mImageTextures);
+    return textures
+        .emplace(key, makeTexture("image " + std::to_string(image) + " " + img.name + (srgb ? " (sRGB)" : ""),
+                                  img.width, img.height, srgb, img.rgba.data(), false))
+        .first->second;
+}
+
+void GpuScene::bindMaterial(const gl::Program& program, const Material& m, bool hasTangents) const
+{
+    using namespace shared;
+    auto bindTexture = [&](int unit, const TextureRef& ref, bool srgb, const gl::Texture& fallback) {
+        glBindTextureUnit(static_cast<GLuint>(unit), ref.valid() ? imageTexture(ref.image, srgb).id() : fallback.id());
+        glBindSampler(static_cast<GLuint>(unit), mMaterialSampler.id());
+    };
+    bindTexture(kUnitBaseColor, m.baseColorTexture, true, mWhite);
+    bindTexture(kUnitMetallicRoughness, m.metallicRoughnessTexture, false, mWhite);
+    bindTexture(kUnitEmission, m.emissionTexture, true, mWhite);
+    bindTexture(kUnitNormalMap, m.normalTexture, false, mFlatNormal);
+    program.set("uBaseColor", m.baseColor);
+    program.set("uMaterial", glm::vec4(m.metallic, m.roughness, m.specular, m.normalScale));
+    program.set("uEmission", glm::vec4(m.emission, 0.0f));
+    glProgramUniform4i(program.id(), program.uniformLocation("uTextures"),
+                       m.normalTexture.valid() && hasTangents ? 1 : 0, m.doubleSided ? 1 : 0, 0, 0);
+}
+
+void GpuScene::draw(const gl::Program& program, Bind bind, GLsizei instanceCount) const
+{
+    for (const Instance& instance : mScene.instances) {
+        const Mesh& mesh = mScene.meshes[instance.mesh];
+        const MeshBuffers& buffers = mMeshes[instance.mesh];
+        if (buffers.indexCount == 0) continue;
+        program.set("uWorldFromObject", instance.worldFromObject);
+        if (bind == Bind::GeometryAndMaterial) {
+            program.set("uNormalFromObject", glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject))));
+            const Material& material = mScene.materials[mesh.material];
+            bindMaterial(program, material, mesh.hasTangents);
+            // glTF: single-sided materials are back-face culled.
+            if (material.doubleSided) glDisable(GL_CULL_FACE);
+            else glEnable(GL_CULL_FACE);
+        }
+        glBindVertexArray(buffers.vertexArray.id());
+        glDrawElementsInstanced(GL_TRIANGLES, buffers.indexCount, GL_UNSIGNED_INT, nullptr, instanceCount);
+    }
+    glBindVertexArray(0);
+    glDisable(GL_CULL_FACE);
+}
+
+} // namespace vplgi

@@ -1,0 +1,172 @@
+#include "shadow_pass.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/params.h"
+#include "glsl/shared/bindings.h"
+
+namespace vplgi {
+
+void ShadowParams::visitParams(ParamVisitor& v)
+{
+    v.field("shadow.cubeSize", cubeSize, 8, 4096, "cube shadow face resolution for point emitters [texels]");
+    v.field("shadow.mapSize", mapSize, 16, 16384, "directional shadow map resolution [texels]");
+    v.field("shadow.normalOffset", normalOffset, 0.0f, 16.0f, "receiver offset along the normal [shadow texels]");
+    v.field("shadow.depthBias", depthBias, 0.0f, 10.0f, "constant distance bias [m]");
+    v.field("shadow.pcfRadius", pcfRadius, 0, 4, "directional PCF kernel radius [texels]");
+}
+
+namespace {
+
+gl::Program loadPoint(const gl::ShaderLoader& shaders)
+{
+    return shaders.load("shadow point",
+                        {{GL_VERTEX_SHADER, "passes/shadow.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_point.frag"}});
+}
+
+gl::Program loadDirectional(const gl::ShaderLoader& shaders)
+{
+    return shaders.load("shadow directional", {{GL_VERTEX_SHADER, "passes/shadow.vert"},
+                                               {GL_FRAGMENT_SHADER, "passes/shadow_directional.frag"}});
+}
+
+// GL cube-map face orientation: +X, -X, +Y, -Y, +Z, -Z with the conventional up vectors.
+const glm::vec3 kFaceDirection[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+const glm::vec3 kFaceUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+
+template <typename T>
+void uploadArray(gl::Buffer& buffer, const char* name, const std::vector<T>& data)
+{
+    GLsizeiptr size = static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T));
+    if (!buffer || buffer.size() < size) buffer = gl::Buffer(name, size);
+    buffer.upload(0, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data());
+}
+
+} // namespace
+
+ShadowPass::ShadowPass(const gl::ShaderLoader& shaders)
+    : mPointProgram(loadPoint(shaders)), mDirectionalProgram(loadDirectional(shaders))
+{
+    gl::SamplerDesc desc;
+    desc.minFilter = GL_NEAREST;
+    desc.magFilter = GL_NEAREST;
+    mSampler = gl::Sampler("shadow sampler", desc);
+}
+
+void ShadowPass::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    mPointProgram = loadPoint(shaders);
+    mDirectionalProgram = loadDirectional(shaders);
+}
+
+void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params)
+{
+    const AABB bounds = scene.scene().worldBounds();
+    const float diagonal = bounds.empty() ? 1.0f : std::max(1e-3f, glm::length(bounds.extent()));
+    mFar = 1.01f * diagonal;
+    const float near = 1e-4f * diagonal;
+
+    GLint maxLayers = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    const int cubeCount = std::min<int>(static_cast<int>(lights.points.size()), maxLayers / 6);
+    if (cubeCount < static_cast<int>(lights.points.size()))
+        std::fprintf(stderr, "warning: %zu point emitters, only %d get shadow cube maps (GL_MAX_ARRAY_TEXTURE_LAYERS)\n",
+                     lights.points.size(), cubeCount);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    // Point emitters: cube faces, layer = emitter * 6 + face.
+    std::vector<glm::mat4> cubeMatrices;
+    const glm::mat4 faceProjection = glm::perspective(glm::radians(90.0f), 1.0f, near, mFar);
+    for (int i = 0; i < static_cast<int>(lights.points.size()); ++i) {
+        shared::PointEmitter& e = lights.points[i];
+        e.intensity.w = i < cubeCount ? static_cast<float>(i) : -1.0f;
+        if (i >= cubeCount) continue;
+        glm::vec3 p(e.positionProfile);
+        for (int f = 0; f < 6; ++f)
+            cubeMatrices.push_back(faceProjection * glm::lookAt(p, p + kFaceDirection[f], kFaceUp[f]));
+    }
+    uploadArray(mEmitters, "shadow emitters", lights.points);
+    if (cubeCount > 0) {
+        uploadArray(mCubeMatrices, "shadow cube matrices", cubeMatrices);
+        const gl::TextureDesc& d = mCubes.desc();
+        if (!mCubes || d.width != params.cubeSize || d.layers != cubeCount * 6) {
+            gl::TextureDesc desc;
+            desc.target = GL_TEXTURE_CUBE_MAP_ARRAY;
+            desc.format = GL_DEPTH_COMPONENT32F;
+            desc.width = desc.height = params.cubeSize;
+            desc.layers = cubeCount * 6;
+            mCubes = gl::Texture("point shadow cubes", desc);
+            mCubeFramebuffer = gl::Framebuffer("point shadows");
+            mCubeFramebuffer.attach(GL_DEPTH_ATTACHMENT, mCubes);
+            mCubeFramebuffer.setDrawBuffers(0);
+            mCubeFramebuffer.checkComplete();
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, mCubeFramebuffer.id());
+        glViewport(0, 0, params.cubeSize, params.cubeSize);
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(mCubeFramebuffer.id(), GL_DEPTH, 0, &one);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mCubeMatrices.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingPointEmitters, mEmitters.id());
+        glUseProgram(mPointProgram.id());
+        mPointProgram.set("uFirstLayer", 0);
+        mPointProgram.set("uFarDistance", mFar);
+        scene.draw(mPointProgram, GpuScene::Bind::Geometry, cubeCount * 6);
+    }
+
+    // Directional emitters: orthographic maps around the scene's bounding sphere.
+    std::vector<glm::mat4> directionalMatrices;
+    const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    const float radius = 0.5f * diagonal * 1.01f;
+    for (std::size_t i = 0; i < lights.directionals.size(); ++i) {
+        shared::DirectionalEmitter& d = lights.directionals[i];
+        glm::vec3 dir = glm::normalize(glm::vec3(d.direction));
+        glm::vec3 up = std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        glm::mat4 view = glm::lookAt(center - dir * (2.0f * radius), center, up);
+        glm::mat4 projection = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
+        directionalMatrices.push_back(projection * view);
+        d.direction.w = static_cast<float>(i);
+    }
+    uploadArray(mDirectionalMatrices, "shadow directional matrices", directionalMatrices);
+    if (!lights.directionals.empty()) {
+        const int count = static_cast<int>(lights.directionals.size());
+        const gl::TextureDesc& d = mDirectional.desc();
+        if (!mDirectional || d.width != params.mapSize || d.layers != count) {
+            gl::TextureDesc desc;
+            desc.target = GL_TEXTURE_2D_ARRAY;
+            desc.format = GL_DEPTH_COMPONENT32F;
+            desc.width = desc.height = params.mapSize;
+            desc.layers = count;
+            mDirectional = gl::Texture("directional shadow maps", desc);
+            mDirectionalFramebuffer = gl::Framebuffer("directional shadows");
+            mDirectionalFramebuffer.attach(GL_DEPTH_ATTACHMENT, mDirectional);
+            mDirectionalFramebuffer.setDrawBuffers(0);
+            mDirectionalFramebuffer.checkComplete();
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, mDirectionalFramebuffer.id());
+        glViewport(0, 0, params.mapSize, params.mapSize);
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(mDirectionalFramebuffer.id(), GL_DEPTH, 0, &one);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());
+        glUseProgram(mDirectionalProgram.id());
+        mDirectionalProgram.set("uFirstLayer", 0);
+        scene.draw(mDirectionalProgram, GpuScene::Bind::Geometry, count);
+    }
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+}
+
+void ShadowPass::bindForReading() const
+{
+    // Unused units still get a valid texture of the right type: bind 0 only when absent.
+    glBindTextureUnit(shared::kUnitPointShadows, mCubes ? mCubes.id() : 0);
+    glBindTextureUnit(shared::kUnitDirectionalShadows, mDirectional ? mDirectional.id() : 0);
+    glBindSampler(shared::kUnitPointShadows, mSampler.id());
+    glBindSampler(shared::kUnitDirectionalShadows, mSampler.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());
+}
+
+} // namespace vplgi

@@ -1,0 +1,48 @@
+// Pass 0: shadow maps for the direct emitters. Point emitters (point, spot, emissive samples) get a
+// cube map in a cube-map array storing radial distance / far; directional emitters get an
+// orthographic depth map fitted to the scene bounds in a 2D array. All faces of all cubes are drawn
+// with one instanced, layered draw per mesh. Re-rendered only when the lights change.
+#pragma once
+
+#include "../api/shader_loader.h"
+#include "../gpu_scene.h"
+#include "core/direct_lights.h"
+
+namespace vplgi {
+
+class ParamVisitor;
+
+struct ShadowParams {
+    int cubeSize = 256;         // point-emitter cube face resolution [texels]
+    int mapSize = 2048;         // directional shadow map resolution [texels]
+    float normalOffset = 1.5f;  // receiver offset along the normal [shadow texels]
+    float depthBias = 0.0f;     // extra constant distance bias [m]
+    int pcfRadius = 1;          // directional PCF kernel radius [texels]
+    void visitParams(ParamVisitor& visitor);
+};
+
+class ShadowPass {
+public:
+    explicit ShadowPass(const gl::ShaderLoader& shaders);
+    void reloadShaders(const gl::ShaderLoader& shaders);
+    // Assigns shadow layers to the emitters (intensity.w / direction.w) and renders every map.
+    void render(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params);
+    // Binds the shadow textures and the directional matrices for the shading passes.
+    void bindForReading() const;
+    float cubeFarDistance() const { return mFar; }
+
+private:
+    gl::Program mPointProgram;
+    gl::Program mDirectionalProgram;
+    gl::Texture mCubes;       // DEPTH32F cube-map array
+    gl::Texture mDirectional; // DEPTH32F 2D array
+    gl::Framebuffer mCubeFramebuffer;
+    gl::Framebuffer mDirectionalFramebuffer;
+    gl::Buffer mCubeMatrices;
+    gl::Buffer mDirectionalMatrices;
+    gl::Buffer mEmitters;
+    gl::Sampler mSampler;
+    float mFar = 1.0f;
+};
+
+} // namespace vplgi

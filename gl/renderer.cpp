@@ -1,0 +1,166 @@
+#include "renderer.h"
+
+#include <algorithm>
+
+#include "api/context.h"
+#include "core/error.h"
+#include "api/debug.h"
+#include "core/params.h"
+
+namespace vplgi {
+
+void RendererParams::visitParams(ParamVisitor& v)
+{
+    v.field("renderer.exposure", exposure, 0.0f, 1e6f, "radiance scale before Reinhard tone mapping");
+    v.field("lights.emitterSamples", lights.emitterSamples, 1, 4096,
+            "cosine point samples representing all emissive triangles");
+    v.field("lights.seed", lights.seed, "seed of the emissive-triangle sample placement");
+    shadow.visitParams(v);
+}
+
+Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const RendererParams& params,
+                   std::unique_ptr<Technique> technique)
+    : mShaders(shaders), mScene(scene), mParams(params), mGpuScene(scene), mTechnique(std::move(technique)),
+      mShadows(shaders), mGBuffer(shaders), mDirect(shaders, "direct light", "passes/direct.frag", {GL_RGBA32F}),
+      mToneMap(shaders, "tone map", "passes/tonemap.frag", {GL_RGBA8, GL_RGBA32F}),
+      mFrameUniforms("frame uniforms", sizeof(shared::FrameUniforms)),
+      mTimer(gl::isSoftwareRenderer() ? gl::PassTimer::Mode::FinishAndWallClock : gl::PassTimer::Mode::TimerQuery)
+{
+    mTechnique->setScene(SceneContext{mScene, mGpuScene, mShaders});
+}
+
+void Renderer::reloadShaders()
+{
+    mShadows.reloadShaders(mShaders);
+    mGBuffer.reloadShaders(mShaders);
+    mDirect.reloadShaders(mShaders);
+    mToneMap.reloadShaders(mShaders);
+    mTechnique->reloadShaders(mShaders);
+}
+
+void Renderer::updateFrameUniforms(const Camera& camera, int width, int height)
+{
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    mFrame.viewFromWorld = camera.viewFromWorld();
+    mFrame.clipFromWorld = camera.clipFromView(aspect) * mFrame.viewFromWorld;
+    mFrame.worldFromClip = glm::inverse(mFrame.clipFromWorld);
+    mFrame.cameraPosition = glm::vec4(camera.position, 1.0f);
+    mFrame.viewport = glm::vec4(width, height, 1.0f / width, 1.0f / height);
+    mFrame.counts = glm::ivec4(static_cast<int>(mLights.points.size()), static_cast<int>(mLights.directionals.size()),
+                               static_cast<int>(mFrameIndex), 0);
+    mFrame.shadow = glm::vec4(mShadows.cubeFarDistance(), mParams.shadow.normalOffset, mParams.shadow.depthBias,
+                              static_cast<float>(mParams.shadow.pcfRadius));
+    mFrame.toneMap = glm::vec4(mParams.exposure, 0.0f, 0.0f, 0.0f);
+    mFrameUniforms.upload(0, sizeof(mFrame), &mFrame);
+    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, mFrameUniforms.id());
+}
+
+void Renderer::prepareIndirectTarget(int width, int height)
+{
+    if (!mIndirect || mIndirect.width() != width || mIndirect.height() != height) {
+        gl::TextureDesc desc;
+        desc.format = GL_RGBA32F;
+        desc.width = width;
+        desc.height = height;
+        mIndirect = gl::Texture("indirect radiance", desc);
+        mIndirectFramebuffer = gl::Framebuffer("indirect");
+        mIndirectFramebuffer.attach(GL_COLOR_ATTACHMENT0, mIndirect);
+        mIndirectFramebuffer.setDrawBuffers(1);
+        mIndirectFramebuffer.checkComplete();
+    }
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(mIndirectFramebuffer.id(), GL_COLOR, 0, zero);
+}
+
+void Renderer::renderFrame(const Camera& camera, int width, int height, float time)
+{
+    require(width > 0 && height > 0, "render size must be positive");
+    mTimer.beginFrame();
+    const bool lightsChanged = mLightsChanged;
+    if (mLightsChanged) {
+        gl::PassTimer::Scope scope(mTimer, "shadow maps");
+        mLights = buildDirectLights(mScene, mParams.lights);
+        mShadows.render(mGpuScene, mLights, mParams.shadow);
+        auto upload = [](gl::Buffer& buffer, const char* name, const auto& data) {
+            using T = typename std::decay_t<decltype(data)>::value_type;
+            GLsizeiptr size = static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T));
+            if (!buffer || buffer.size() < size) buffer = gl::Buffer(name, size);
+            buffer.upload(0, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data());
+        };
+        upload(mPointEmitters, "point emitters", mLights.points);
+        upload(mDirectionalEmitters, "directional emitters", mLights.directionals);
+        mLightsChanged = false;
+    }
+    updateFrameUniforms(camera, width, height);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingPointEmitters, mPointEmitters.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingDirectionalEmitters, mDirectionalEmitters.id());
+
+    FrameContext frame{camera, width, height, time, mFrameIndex, lightsChanged, mLights, mTimer};
+    mTechnique->update(frame);
+    {
+        gl::PassTimer::Scope scope(mTimer, "gbuffer");
+        mGBuffer.render(mGpuScene, width, height);
+    }
+    {
+        gl::PassTimer::Scope scope(mTimer, "direct light");
+        mGBuffer.gbuffer().bindForReading();
+        mShadows.bindForReading();
+        mDirect.render(width, height);
+    }
+    prepareIndirectTarget(width, height);
+    {
+        gl::PassTimer::Scope scope(mTimer, std::string(mTechnique->name()));
+        mTechnique->render(frame, mGBuffer.gbuffer(), IndirectTarget{mIndirect, mIndirectFramebuffer});
+    }
+    {
+        gl::PassTimer::Scope scope(mTimer, "tone map");
+        glBindTextureUnit(shared::kUnitDirect, mDirect.target(0).id());
+        glBindTextureUnit(shared::kUnitIndirect, mIndirect.id());
+        glBindSampler(shared::kUnitDirect, 0);
+        glBindSampler(shared::kUnitIndirect, 0);
+        mToneMap.render(width, height);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ++mFrameIndex;
+    gl::checkDebugMessages();
+}
+
+ImageRGBA32F Renderer::readLinear(const gl::Texture& texture) const
+{
+    std::vector<float> pixels = gl::readTextureRGBA32F(texture);
+    ImageRGBA32F image;
+    image.width = texture.width();
+    image.height = texture.height();
+    image.pixels.resize(pixels.size());
+    const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+    for (int y = 0; y < image.height; ++y) // GL rows are bottom to top
+        std::copy_n(&pixels[static_cast<std::size_t>(image.height - 1 - y) * row], row, &image.pixels[y * row]);
+    return image;
+}
+
+ImageRGBA32F Renderer::readRadiance() const
+{
+    return readLinear(mToneMap.target(1));
+}
+
+ImageRGBA32F Renderer::readDirect() const
+{
+    return readLinear(mDirect.target(0));
+}
+
+ImageRGBA8 Renderer::readDisplay() const
+{
+    const gl::Texture& texture = mToneMap.target(0);
+    ImageRGBA8 image;
+    image.width = texture.width();
+    image.height = texture.height();
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(image.width) * image.height * 4);
+    glGetTextureImage(texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels.size()), pixels.data());
+    image.pixels.resize(pixels.size());
+    const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+    for (int y = 0; y < image.height; ++y)
+        std::copy_n(&pixels[static_cast<std::size_t>(image.height - 1 - y) * row], row, &image.pixels[y * row]);
+    return image;
+}
+
+} // namespace vplgi

@@ -1,0 +1,82 @@
+// The renderer: one readable function (renderFrame) lists the passes in order.
+//
+//   shadows (only when lights changed) -> G-buffer -> direct light -> technique (indirect)
+//     -> tone map (display RGBA8 + combined linear radiance) -> window blit | readback
+//
+// Units: the radiance targets hold W/(m^2 sr); see core/scene.h for light units.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "api/timer.h"
+#include "core/direct_lights.h"
+#include "core/image_io.h"
+#include "core/scene.h"
+#include "glsl/shared/bindings.h"
+#include "gpu_scene.h"
+#include "passes/fullscreen_pass.h"
+#include "passes/gbuffer_pass.h"
+#include "passes/shadow_pass.h"
+#include "techniques/technique.h"
+
+namespace vplgi {
+
+class ParamVisitor;
+
+struct RendererParams {
+    float exposure = 1.0f;           // radiance scale before Reinhard tone mapping
+    ShadowParams shadow;             // shadow.*
+    DirectLightParams lights;        // lights.emitterSamples, lights.seed
+    void visitParams(ParamVisitor& visitor);
+};
+
+class Renderer {
+public:
+    Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const RendererParams& params,
+             std::unique_ptr<Technique> technique);
+
+    // Renders one frame of `camera` at width x height into the output targets.
+    void renderFrame(const Camera& camera, int width, int height, float time = 0.0f);
+    // Call after changing scene lights (animation): emitters and shadow maps are rebuilt next frame.
+    void markLightsChanged() { mLightsChanged = true; }
+    // Recompiles every program; on error keeps the old ones and rethrows.
+    void reloadShaders();
+
+    ImageRGBA8 readDisplay() const;     // tone-mapped sRGB bytes, rows top to bottom
+    ImageRGBA32F readRadiance() const;  // direct + indirect, linear, rows top to bottom
+    ImageRGBA32F readDirect() const;    // direct only (incl. emission), linear, rows top to bottom
+    const gl::Texture& displayTexture() const { return mToneMap.target(0); }
+
+    const gl::PassTimer& timer() const { return mTimer; }
+    const DirectLightSet& lights() const { return mLights; }
+    Technique& technique() { return *mTechnique; }
+    const RendererParams& params() const { return mParams; }
+
+private:
+    void updateFrameUniforms(const Camera& camera, int width, int height);
+    void prepareIndirectTarget(int width, int height);
+    ImageRGBA32F readLinear(const gl::Texture& texture) const;
+
+    const gl::ShaderLoader& mShaders;
+    const Scene& mScene;
+    RendererParams mParams;
+    GpuScene mGpuScene;
+    std::unique_ptr<Technique> mTechnique;
+    ShadowPass mShadows;
+    GBufferPass mGBuffer;
+    FullscreenPass mDirect;
+    FullscreenPass mToneMap;
+    gl::Texture mIndirect;
+    gl::Framebuffer mIndirectFramebuffer;
+    gl::Buffer mFrameUniforms;
+    gl::Buffer mPointEmitters;
+    gl::Buffer mDirectionalEmitters;
+    DirectLightSet mLights;
+    shared::FrameUniforms mFrame{};
+    gl::PassTimer mTimer;
+    bool mLightsChanged = true;
+    std::uint32_t mFrameIndex = 0;
+};
+
+} // namespace vplgi

@@ -1,0 +1,49 @@
+// Binding slots and GPU structs, named once for C++ and GLSL.
+#ifndef VPLGI_SHARED_BINDINGS_H
+#define VPLGI_SHARED_BINDINGS_H
+#include "compat.h"
+#include "lights.h"
+
+VPLGI_SHARED_BEGIN
+
+// Uniform and storage buffer bindings.
+VPLGI_CONST int kBindingFrame = 0;               // UBO FrameUniforms
+VPLGI_CONST int kBindingPointEmitters = 1;       // SSBO PointEmitter[]
+VPLGI_CONST int kBindingDirectionalEmitters = 2; // SSBO DirectionalEmitter[]
+VPLGI_CONST int kBindingShadowMatrices = 3;      // SSBO mat4[] (clipFromWorld per shadow layer)
+
+// Texture units.
+VPLGI_CONST int kUnitBaseColor = 0;
+VPLGI_CONST int kUnitMetallicRoughness = 1;
+VPLGI_CONST int kUnitEmission = 2;
+VPLGI_CONST int kUnitNormalMap = 3;
+VPLGI_CONST int kUnitGBufferPosition = 4;
+VPLGI_CONST int kUnitGBufferNormal = 5;
+VPLGI_CONST int kUnitGBufferBaseColor = 6;
+VPLGI_CONST int kUnitGBufferEmission = 7;
+VPLGI_CONST int kUnitPointShadows = 8;
+VPLGI_CONST int kUnitDirectionalShadows = 9;
+VPLGI_CONST int kUnitDirect = 10;
+VPLGI_CONST int kUnitIndirect = 11;
+
+// Per-frame constants (std140; vec4/mat4 members only).
+struct FrameUniforms {
+    mat4 clipFromWorld;
+    mat4 viewFromWorld;
+    mat4 worldFromClip;
+    vec4 cameraPosition; // xyz eye [m]
+    vec4 viewport;       // width, height, 1/width, 1/height
+    ivec4 counts;        // x point emitters, y directional emitters, z frame index, w unused
+    vec4 shadow;         // x cube far distance [m], y normal offset [texels], z depth bias [m], w PCF radius [texels]
+    vec4 toneMap;        // x exposure, yzw unused
+};
+
+VPLGI_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(vplgi::shared::FrameUniforms) == 3 * 64 + 5 * 16, "FrameUniforms must match std140");
+static_assert(sizeof(vplgi::shared::PointEmitter) == 64, "PointEmitter must match std430");
+static_assert(sizeof(vplgi::shared::DirectionalEmitter) == 32, "DirectionalEmitter must match std430");
+#endif
+
+#endif // VPLGI_SHARED_BINDINGS_H

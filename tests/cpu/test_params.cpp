@@ -1,0 +1,64 @@
+// Parameters: --set parsing, ranges, unknown keys, the configuration dump.
+#include <catch2/catch.hpp>
+
+#include "core/error.h"
+#include "core/params.h"
+
+using namespace vplgi;
+
+namespace {
+
+struct Example {
+    float exposure = 1.0f;
+    int count = 64;
+    bool enabled = false;
+    std::uint32_t seed = 1;
+    void visitParams(ParamVisitor& v)
+    {
+        v.field("x.exposure", exposure, 0.0f, 10.0f, "exposure");
+        v.field("x.count", count, 1, 100, "count");
+        v.field("x.enabled", enabled, "enabled");
+        v.field("x.seed", seed, "seed");
+    }
+};
+
+} // namespace
+
+TEST_CASE("settings apply to the fields they name, later ones win", "[params]")
+{
+    Example e;
+    ParamSetter setter(Settings{{"x.exposure", "2.5"}, {"x.count", "7"}, {"x.enabled", "true"}, {"x.count", "9"},
+                        {"x.seed", "4000000000"}});
+    e.visitParams(setter);
+    REQUIRE_NOTHROW(setter.finish());
+    CHECK(e.exposure == 2.5f);
+    CHECK(e.count == 9);
+    CHECK(e.enabled);
+    CHECK(e.seed == 4000000000u);
+}
+
+TEST_CASE("bad settings are errors naming the key", "[params]")
+{
+    Example e;
+    ParamSetter outside(Settings{{"x.count", "0"}});
+    CHECK_THROWS_WITH(e.visitParams(outside), Catch::Contains("x.count = 0 is outside [1, 100]"));
+    ParamSetter notNumber(Settings{{"x.exposure", "bright"}});
+    CHECK_THROWS_WITH(e.visitParams(notNumber), Catch::Contains("x.exposure"));
+    ParamSetter fraction(Settings{{"x.count", "2.5"}});
+    CHECK_THROWS_WITH(e.visitParams(fraction), Catch::Contains("not an integer"));
+    ParamSetter unknown(Settings{{"x.exposur", "1"}});
+    e.visitParams(unknown);
+    CHECK_THROWS_WITH(unknown.finish(), Catch::Contains("unknown parameter \"x.exposur\""));
+    CHECK_THROWS_AS(parseSetting("novalue"), Error);
+    CHECK(parseSetting("a.b=c=d").second == "c=d");
+}
+
+TEST_CASE("the dump lists every field with its value", "[params]")
+{
+    Example e;
+    e.count = 12;
+    ParamDumper dumper;
+    e.visitParams(dumper);
+    CHECK(dumper.values().at("x.count") == "12");
+    CHECK(dumper.text().find("x.exposure = 1  # exposure [0, 10]") != std::string::npos);
+}

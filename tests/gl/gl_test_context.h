@@ -1,0 +1,19 @@
+// One headless EGL context for the whole GL test binary, with KHR_debug errors turned into test
+// failures (checkDebugMessages throws), and helpers for image tests.
+#pragma once
+
+#include <string>
+
+#include "core/image_io.h"
+#include "gl/api/shader_loader.h"
+
+namespace vplgi::test {
+
+// Creates the context on first use; every GL test calls this first.
+void ensureGLContext();
+// The project's glsl/ directory.
+const gl::ShaderLoader& shaders();
+// Writes `image` under the test output directory (for failures) and returns the path.
+std::string saveTestImage(const std::string& name, const ImageRGBA32F& image);
+
+} // namespace vplgi::test
