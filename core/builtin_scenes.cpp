@@ -763,7 +763,7 @@ Scene makeStreet()
                glm::vec3(std::max(x0, x1), kCurbHeight, kStreetHalfLength), kStreetTessellation);
     }
     Mesh plane = newMesh("ground", ground);
-    constexpr float kGroundHalf = 250.0f, kGroundCell = 10.0f;
+    constexpr float kGroundHalf = 100.0f, kGroundCell = 10.0f; // small: the shadow map covers the scene bounds
     const glm::vec3 alongZ(0.0f, 0.0f, 1.0f), alongX(1.0f, 0.0f, 0.0f); // z cross x = +y: faces up
     addRect(plane, glm::vec3(-kGroundHalf, 0.0f, -kGroundHalf), 2.0f * kGroundHalf * alongZ,
             (kGroundHalf - kRoadHalfWidth) * alongX, kGroundCell);

@@ -17,7 +17,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -101,8 +100,8 @@ std::string uniqueName(const std::string& preferred, const std::string& fallback
 }
 
 // Converts nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: <why>"
-// into "<path>:3:5: invalid JSON: <why>" (one line, compiler-style).
-[[noreturn]] void throwJsonParseError(const std::string& path, const std::string& text,
+// into "<where>:3:5: invalid JSON: <why>" (one line, compiler-style).
+[[noreturn]] void throwJsonParseError(const std::string& where, const std::string& text,
                                       const nlohmann::json::parse_error& e)
 {
     const std::size_t at = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
@@ -120,7 +119,7 @@ std::string uniqueName(const std::string& preferred, const std::string& fallback
     const std::size_t colon = start == std::string::npos ? std::string::npos : why.find(": ", start);
     if (colon != std::string::npos) why = why.substr(colon + 2);
     std::replace(why.begin(), why.end(), '\n', ' ');
-    throw Error(path + ":" + std::to_string(line) + ":" + std::to_string(column) + ": invalid JSON: " + why);
+    throw Error(where + ":" + std::to_string(line) + ":" + std::to_string(column) + ": invalid JSON: " + why);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -144,6 +143,8 @@ const std::set<std::string>& supportedRequiredExtensions()
 std::string gltfJsonText(const std::string& path, bool binary)
 {
     if (!binary) return readWholeFile(path);
+    // Anything that is not a well-formed GLB header yields "", which parses as invalid JSON; let
+    // tinygltf describe those files instead (see checkRequiredExtensions).
     std::ifstream in(path, std::ios::binary);
     unsigned char header[20] = {};
     if (!in.read(reinterpret_cast<char*>(header), sizeof(header))) return "";
@@ -164,13 +165,13 @@ std::string gltfJsonText(const std::string& path, bool binary)
 void checkRequiredExtensions(const std::string& path, bool binary)
 {
     const std::string text = gltfJsonText(path, binary);
+    if (binary && text.empty()) return;
     nlohmann::json doc;
     try {
         doc = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
-        // A .gltf is reported like a scene file; line numbers inside a .glb chunk would mislead.
-        if (!binary) throwJsonParseError(path, text, e);
-        return; // tinygltf reports the broken .glb below
+        // Reported like a scene file; in a .glb the position is within the JSON chunk.
+        throwJsonParseError(binary ? path + ": JSON chunk" : path, text, e);
     }
     if (!doc.is_object()) return;
     auto it = doc.find("extensionsRequired");
@@ -362,7 +363,8 @@ private:
         const int source = mModel.textures[static_cast<std::size_t>(textureIndex)].source;
         if (source < 0) return ref; // no image we can decode: treated as untextured
         if (static_cast<std::size_t>(source) >= mModel.images.size())
-            fail(what, "texture " + std::to_string(textureIndex) + " refers to missing image " + std::to_string(source));
+            fail(what, "texture " + std::to_string(textureIndex) + " refers to missing image " +
+                           std::to_string(source));
         ref.image = source;
         return ref;
     }
@@ -450,7 +452,9 @@ private:
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
         case TINYGLTF_COMPONENT_TYPE_FLOAT: break;
-        default: throw Error(mPath + ": " + where + ": componentType " + std::to_string(acc.componentType) + " is not valid glTF");
+        default:
+            throw Error(mPath + ": " + where + ": componentType " + std::to_string(acc.componentType) +
+                        " is not valid glTF");
         }
         switch (acc.type) {
         case TINYGLTF_TYPE_SCALAR: view.components = 1; break;
@@ -459,9 +463,11 @@ private:
         case TINYGLTF_TYPE_VEC4: view.components = 4; break;
         default: throw Error(mPath + ": " + where + ": matrix accessors are not supported here");
         }
-        if (acc.bufferView < 0) { // all zeros; only meaningful with sparse data, bounded so a typo cannot exhaust memory
+        if (acc.bufferView < 0) {
+            // All zeros: only meaningful with sparse data; bounded so that a typo cannot exhaust memory.
             if (view.count > (std::size_t(1) << 24))
-                throw Error(mPath + ": " + where + ": " + std::to_string(view.count) + " elements without a bufferView");
+                throw Error(mPath + ": " + where + ": " + std::to_string(view.count) +
+                            " elements without a bufferView");
             return view;
         }
 
@@ -475,7 +481,8 @@ private:
                                         static_cast<std::size_t>(view.components);
         view.stride = bv.byteStride == 0 ? elementSize : bv.byteStride;
         if (view.stride < elementSize)
-            throw Error(mPath + ": " + where + ": byteStride " + std::to_string(view.stride) + " is smaller than an element");
+            throw Error(mPath + ": " + where + ": byteStride " + std::to_string(view.stride) +
+                        " is smaller than an element");
         const bool viewFits = bv.byteOffset <= buffer.size() && bv.byteLength <= buffer.size() - bv.byteOffset;
         bool accessorFits = viewFits && acc.byteOffset <= bv.byteLength;
         if (accessorFits && view.count > 0) {
@@ -514,7 +521,8 @@ private:
             fail(what, "indices must be unsigned 8, 16 or 32 bit integers");
         std::vector<std::uint32_t> out(view.count, 0u);
         if (view.data == nullptr) return out;
-        for (std::size_t i = 0; i < view.count; ++i) out[i] = readComponentAsIndex(view.element(i, 0), view.componentType);
+        for (std::size_t i = 0; i < view.count; ++i)
+            out[i] = readComponentAsIndex(view.element(i, 0), view.componentType);
         return out;
     }
 
@@ -527,7 +535,8 @@ private:
         const std::string what = label("mesh", meshIndex, src.name) + " primitive " + std::to_string(primitiveIndex);
 
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN)
             fail(what, std::string("mode ") + modeName(mode) + " is not supported (triangles only)");
 
         const auto attribute = [&](const char* name) {
@@ -579,10 +588,12 @@ private:
         }
         for (std::uint32_t index : order)
             if (index >= vertexCount)
-                fail(what, "index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) + " vertices)");
+                fail(what, "index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
+                               " vertices)");
 
         if (mode == TINYGLTF_MODE_TRIANGLES) {
-            if (order.size() % 3 != 0) fail(what, "index count " + std::to_string(order.size()) + " is not a multiple of 3");
+            if (order.size() % 3 != 0)
+                fail(what, "index count " + std::to_string(order.size()) + " is not a multiple of 3");
             mesh.indices = std::move(order);
         } else {
             // glTF 2.0 spec 3.7.2.1: strip triangle i = (i, i+1+i%2, i+2-i%2); fan = (i+1, i+2, 0).
@@ -789,7 +800,8 @@ public:
 
     void checkObject(const Json& value, const std::string& where) const
     {
-        if (!value.is_object()) fail(where, where.empty() ? "the top level must be a JSON object" : "must be an object");
+        if (!value.is_object())
+            fail(where, where.empty() ? "the top level must be a JSON object" : "must be an object");
     }
 
     void checkKeys(const Json& object, const std::string& where, std::initializer_list<const char*> allowed) const
@@ -876,7 +888,8 @@ Scene loadSource(const SceneFileReader& reader, const std::string& source)
 void mergeLight(const SceneFileReader& r, Scene& scene, const Json& object, const std::string& where)
 {
     r.checkKeys(object, where,
-                {"name", "type", "position", "direction", "color", "intensity", "innerConeDeg", "outerConeDeg", "range"});
+                {"name", "type", "position", "direction", "color", "intensity", "innerConeDeg", "outerConeDeg",
+                 "range"});
     const Json* name = SceneFileReader::find(object, "name");
     if (name == nullptr) r.fail(where, "needs a \"name\"");
     const std::string lightName = r.string(*name, where, "name");
@@ -908,7 +921,8 @@ void mergeLight(const SceneFileReader& r, Scene& scene, const Json& object, cons
     }
     if (const Json* v = SceneFileReader::find(object, "color")) {
         light.color = r.vec3(*v, where, "color");
-        if (light.color.r < 0.0f || light.color.g < 0.0f || light.color.b < 0.0f) r.fail(where, "\"color\" must be >= 0");
+        if (light.color.r < 0.0f || light.color.g < 0.0f || light.color.b < 0.0f)
+            r.fail(where, "\"color\" must be >= 0");
     }
     if (const Json* v = SceneFileReader::find(object, "intensity")) {
         light.intensity = r.number(*v, where, "intensity");

@@ -29,7 +29,7 @@ expect_error() { # expect_error "<substring of the message>" args...
 
 printf '{ "source": "builtin:cornell", ' > malformed.json
 printf 'not a gltf' > broken.gltf
-printf '{"source": "builtin:cornell", "lights": [{"type": "point", "intensity": -3}]}' > negative.json
+printf '{"source": "builtin:cornell", "lights": [{"name": "bad", "type": "point", "intensity": -3}]}' > negative.json
 printf '{"source": "builtin:cornell", "colour": 1}' > unknownkey.json
 
 expect_error "no such file" render --scene missing.glb --out a.png

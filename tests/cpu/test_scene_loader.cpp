@@ -131,8 +131,8 @@ public:
     template <typename T>
     int addData(const std::vector<T>& values, int componentType, const std::string& type, int components)
     {
-        return addAccessor(addView(bytesOf(values)), componentType, values.size() / static_cast<std::size_t>(components),
-                           type);
+        const std::size_t count = values.size() / static_cast<std::size_t>(components);
+        return addAccessor(addView(bytesOf(values)), componentType, count, type);
     }
 
     int append(const std::string& array, const json& value)
@@ -288,10 +288,16 @@ std::string sixteenBitPng()
     return png;
 }
 
+// The environment wins over the build's VPLGI_SHARED_DIR, which wins over <repo>/../shared.
 fs::path sharedDir()
 {
-    if (const char* env = std::getenv("VPLGI_SHARED_DIR")) return env;
+    const char* env = std::getenv("VPLGI_SHARED_DIR");
+    if (env != nullptr && *env != '\0') return env;
+#ifdef VPLGI_SHARED_DIR
+    return VPLGI_SHARED_DIR;
+#else
     return fs::path(VPLGI_SOURCE_DIR) / ".." / "shared";
+#endif
 }
 
 } // namespace
@@ -345,8 +351,8 @@ TEST_CASE("glTF: missing normals are generated flat, u16 indices, normalized u8 
     const std::string uv("\x00\x00\x00\x00\xff\x00\x00\x00\x00\xff\x00\x00\xff\xff\x00\x00", 16);
     const int texcoords = b.addAccessor(b.addView(uv, 4), kUByte, 4, "VEC2", 0, true);
     const int indices = b.addData<std::uint16_t>({0, 1, 2, 2, 1, 3}, kUShort, "SCALAR", 1);
-    b.append("meshes", {{"primitives", json::array({{{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", texcoords}}},
-                                                     {"indices", indices}}})}});
+    const json attributes = {{"POSITION", positions}, {"TEXCOORD_0", texcoords}};
+    b.append("meshes", {{"primitives", json::array({{{"attributes", attributes}, {"indices", indices}}})}});
     b.append("nodes", {{"mesh", 0}});
     b.setScene({0});
     writeFile(dir.file("fold.gltf"), b.gltfWithDataUri());
@@ -570,14 +576,19 @@ TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_l
         CHECK_THAT(message, Contains("invalid JSON"));
         CHECK(message.find('\n') == std::string::npos);
 
-        // A .glb whose JSON chunk is broken: tinygltf's message, still naming the file.
+        // A .glb whose JSON chunk is broken.
         std::string glb = GltfBuilder().glb();
         glb.replace(20, 1, "[");
         const std::string glbPath = dir.file("broken.glb");
         writeFile(glbPath, glb);
         const std::string glbMessage = errorOf([&] { vplgi::loadGltf(glbPath); });
-        CHECK_THAT(glbMessage, Contains(glbPath + ": "));
+        CHECK_THAT(glbMessage, Contains(glbPath + ": JSON chunk:1:"));
         CHECK(glbMessage.find('\n') == std::string::npos);
+
+        // A .glb cut short: tinygltf's message, naming the file.
+        const std::string cut = dir.file("cut.glb");
+        writeFile(cut, glb.substr(0, 16));
+        CHECK_THAT(errorOf([&] { vplgi::loadGltf(cut); }), Contains(cut + ": "));
     }
     SECTION("unsupported required extension, .gltf and .glb")
     {
@@ -588,7 +599,8 @@ TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_l
         b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
         const std::string gltf = dir.file("draco.gltf");
         writeFile(gltf, b.gltfWithDataUri());
-        CHECK(errorOf([&] { vplgi::loadGltf(gltf); }) == gltf + ": unsupported required extension KHR_draco_mesh_compression");
+        CHECK(errorOf([&] { vplgi::loadGltf(gltf); }) ==
+              gltf + ": unsupported required extension KHR_draco_mesh_compression");
 
         b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_texture_basisu"};
         b.doc["extensionsRequired"] = {"KHR_lights_punctual", "KHR_texture_basisu"};
@@ -780,7 +792,8 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
     };
 
     CHECK(errorFor(R"({"source": "builtin:furnace", "lights": [
-        {"name": "a", "type": "point"}, {"name": "b", "type": "point"}, {"name": "c", "type": "point", "intensty": 3}]})") ==
+        {"name": "a", "type": "point"}, {"name": "b", "type": "point"},
+        {"name": "c", "type": "point", "intensty": 3}]})") ==
           path + ": lights[2]: unknown key \"intensty\"");
     CHECK(errorFor(R"({"source": "builtin:furnace", "lightz": []})") == path + ": unknown key \"lightz\"");
     CHECK(errorFor(R"({"source": "builtin:furnace", "lights": [{"name": "a", "type": "point", "intensity": -1}]})") ==
@@ -791,7 +804,8 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
           path + ": lights[0]: \"type\" must be \"point\", \"spot\" or \"directional\" (got \"area\")");
     CHECK(errorFor(R"({"source": "builtin:furnace", "lights": [{"name": "new"}]})") ==
           path + ": lights[0]: a new light needs a \"type\"");
-    CHECK(errorFor(R"({"source": "builtin:furnace", "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0]}]})") ==
+    CHECK(errorFor(R"({"source": "builtin:furnace",
+        "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0]}]})") ==
           path + ": cameras[0]: \"target\" must be an array of 3 numbers");
     CHECK(errorFor(R"({"source": "builtin:nope"})") ==
           path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: cornell, furnace, maze, street)");
