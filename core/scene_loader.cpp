@@ -85,17 +85,18 @@ std::string readWholeFile(const std::string& path)
 std::string joinNames(const std::vector<std::string>& names)
 {
     std::string out;
-    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    for (const std::string& n : names)
+        out += (out.empty() ? "" : ", ") + n;
     return out;
 }
 
 // Appends "-2", "-3", ... until the name is unused; empty base names take the fallback.
-std::string uniqueName(const std::string& preferred, const std::string& fallback,
-                       const std::set<std::string>& taken)
+std::string uniqueName(const std::string& preferred, const std::string& fallback, const std::set<std::string>& taken)
 {
     const std::string base = preferred.empty() ? fallback : preferred;
     std::string name = base;
-    for (int k = 2; taken.count(name) != 0; ++k) name = base + "-" + std::to_string(k);
+    for (int k = 2; taken.count(name) != 0; ++k)
+        name = base + "-" + std::to_string(k);
     return name;
 }
 
@@ -131,9 +132,7 @@ std::string uniqueName(const std::string& preferred, const std::string& fallback
 const std::set<std::string>& supportedRequiredExtensions()
 {
     static const std::set<std::string> kSupported = {
-        "KHR_lights_punctual",
-        "KHR_materials_emissive_strength",
-        "KHR_materials_specular",
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular",
         "KHR_mesh_quantization", // integer attributes are converted generically below
     };
     return kSupported;
@@ -230,8 +229,7 @@ float readComponentAsFloat(const unsigned char* p, int componentType, bool norma
     default: { // TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT (others are rejected in viewAccessor)
         std::uint32_t v;
         std::memcpy(&v, p, sizeof(v));
-        return normalized ? static_cast<float>(static_cast<double>(v) / 4294967295.0)
-                          : static_cast<float>(v);
+        return normalized ? static_cast<float>(static_cast<double>(v) / 4294967295.0) : static_cast<float>(v);
     }
     }
 }
@@ -239,7 +237,8 @@ float readComponentAsFloat(const unsigned char* p, int componentType, bool norma
 std::uint32_t readComponentAsIndex(const unsigned char* p, int componentType)
 {
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return *p;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
         std::uint16_t v;
         std::memcpy(&v, p, sizeof(v));
@@ -256,11 +255,16 @@ std::uint32_t readComponentAsIndex(const unsigned char* p, int componentType)
 const char* modeName(int mode)
 {
     switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    default: return "unknown";
+    case TINYGLTF_MODE_POINTS:
+        return "POINTS";
+    case TINYGLTF_MODE_LINE:
+        return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+        return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+        return "LINE_STRIP";
+    default:
+        return "unknown";
     }
 }
 
@@ -273,12 +277,14 @@ public:
 
     void run()
     {
-        for (std::size_t i = 0; i < mModel.images.size(); ++i) mScene.images.push_back(convertImage(i));
+        for (std::size_t i = 0; i < mModel.images.size(); ++i)
+            mScene.images.push_back(convertImage(i));
         for (std::size_t i = 0; i < mModel.materials.size(); ++i)
             mScene.materials.push_back(convertMaterial(i));
 
         mVisiting.assign(mModel.nodes.size(), false);
-        for (int root : rootNodes()) visitNode(root, glm::mat4(1.0f));
+        for (int root : rootNodes())
+            visitNode(root, glm::mat4(1.0f));
     }
 
 private:
@@ -358,13 +364,12 @@ private:
         if (textureIndex < 0) return ref;
         if (static_cast<std::size_t>(textureIndex) >= mModel.textures.size())
             fail(what, "texture " + std::to_string(textureIndex) + " does not exist");
-        if (texCoord != 0)
-            fail(what, "uses TEXCOORD_" + std::to_string(texCoord) + " (only TEXCOORD_0 is supported)");
+        if (texCoord != 0) fail(what, "uses TEXCOORD_" + std::to_string(texCoord) + " (only TEXCOORD_0 is supported)");
         const int source = mModel.textures[static_cast<std::size_t>(textureIndex)].source;
         if (source < 0) return ref; // no image we can decode: treated as untextured
         if (static_cast<std::size_t>(source) >= mModel.images.size())
-            fail(what, "texture " + std::to_string(textureIndex) + " refers to missing image " +
-                           std::to_string(source));
+            fail(what,
+                 "texture " + std::to_string(textureIndex) + " refers to missing image " + std::to_string(source));
         ref.image = source;
         return ref;
     }
@@ -410,8 +415,8 @@ private:
         m.emissionTexture = textureRef(src.emissiveTexture.index, src.emissiveTexture.texCoord, what);
 
         // Only the scalar factor of KHR_materials_specular; specularColor and its textures are ignored.
-        m.specular = static_cast<float>(
-            extensionNumber(src.extensions, "KHR_materials_specular", "specularFactor", 1.0, what));
+        m.specular =
+            static_cast<float>(extensionNumber(src.extensions, "KHR_materials_specular", "specularFactor", 1.0, what));
         m.normalTexture = textureRef(src.normalTexture.index, src.normalTexture.texCoord, what);
         m.normalScale = static_cast<float>(src.normalTexture.scale);
         m.doubleSided = src.doubleSided;
@@ -451,17 +456,27 @@ private:
         case TINYGLTF_COMPONENT_TYPE_SHORT:
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            break;
         default:
             throw Error(mPath + ": " + where + ": componentType " + std::to_string(acc.componentType) +
                         " is not valid glTF");
         }
         switch (acc.type) {
-        case TINYGLTF_TYPE_SCALAR: view.components = 1; break;
-        case TINYGLTF_TYPE_VEC2: view.components = 2; break;
-        case TINYGLTF_TYPE_VEC3: view.components = 3; break;
-        case TINYGLTF_TYPE_VEC4: view.components = 4; break;
-        default: throw Error(mPath + ": " + where + ": matrix accessors are not supported here");
+        case TINYGLTF_TYPE_SCALAR:
+            view.components = 1;
+            break;
+        case TINYGLTF_TYPE_VEC2:
+            view.components = 2;
+            break;
+        case TINYGLTF_TYPE_VEC3:
+            view.components = 3;
+            break;
+        case TINYGLTF_TYPE_VEC4:
+            view.components = 4;
+            break;
+        default:
+            throw Error(mPath + ": " + where + ": matrix accessors are not supported here");
         }
         if (acc.bufferView < 0) {
             // All zeros: only meaningful with sparse data; bounded so that a typo cannot exhaust memory.
@@ -570,7 +585,8 @@ private:
         }
         if (attribute("TEXCOORD_0") >= 0) {
             const std::vector<float> t = readAttribute("TEXCOORD_0", 2);
-            for (std::size_t i = 0; i < vertexCount; ++i) mesh.vertices[i].texcoord = glm::vec2(t[2 * i], t[2 * i + 1]);
+            for (std::size_t i = 0; i < vertexCount; ++i)
+                mesh.vertices[i].texcoord = glm::vec2(t[2 * i], t[2 * i + 1]);
         }
         if (attribute("TANGENT") >= 0) {
             const std::vector<float> t = readAttribute("TANGENT", 4);
@@ -584,12 +600,13 @@ private:
             order = readIndices(prim.indices, what + ": indices");
         } else {
             order.resize(vertexCount);
-            for (std::size_t i = 0; i < vertexCount; ++i) order[i] = static_cast<std::uint32_t>(i);
+            for (std::size_t i = 0; i < vertexCount; ++i)
+                order[i] = static_cast<std::uint32_t>(i);
         }
         for (std::uint32_t index : order)
             if (index >= vertexCount)
-                fail(what, "index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) +
-                               " vertices)");
+                fail(what,
+                     "index " + std::to_string(index) + " out of range (" + std::to_string(vertexCount) + " vertices)");
 
         if (mode == TINYGLTF_MODE_TRIANGLES) {
             if (order.size() % 3 != 0)
@@ -599,8 +616,7 @@ private:
             // glTF 2.0 spec 3.7.2.1: strip triangle i = (i, i+1+i%2, i+2-i%2); fan = (i+1, i+2, 0).
             for (std::size_t i = 0; i + 2 < order.size(); ++i) {
                 if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-                    mesh.indices.insert(mesh.indices.end(),
-                                        {order[i], order[i + 1 + i % 2], order[i + 2 - i % 2]});
+                    mesh.indices.insert(mesh.indices.end(), {order[i], order[i + 1 + i % 2], order[i + 2 - i % 2]});
                 } else {
                     mesh.indices.insert(mesh.indices.end(), {order[i + 1], order[i + 2], order[0]});
                 }
@@ -697,11 +713,13 @@ private:
 
         const glm::mat4 world = parentWorld * localTransform(node, what);
         if (node.mesh >= 0)
-            for (int mesh : sceneMeshes(node.mesh, what)) mScene.instances.push_back(Instance{mesh, world});
+            for (int mesh : sceneMeshes(node.mesh, what))
+                mScene.instances.push_back(Instance{mesh, world});
         if (node.camera >= 0) addCamera(node, world, what);
         auto light = node.extensions.find("KHR_lights_punctual");
         if (light != node.extensions.end()) addLight(node, light->second, world, what);
-        for (int child : node.children) visitNode(child, world);
+        for (int child : node.children)
+            visitNode(child, world);
 
         mVisiting[n] = false;
     }
@@ -725,14 +743,19 @@ private:
         const std::string lightWhat = what + ": light " + std::to_string(index);
 
         Light light;
-        if (src.type == "point") light.type = LightType::Point;
-        else if (src.type == "spot") light.type = LightType::Spot;
-        else if (src.type == "directional") light.type = LightType::Directional;
-        else fail(lightWhat, "unknown type \"" + src.type + "\"");
+        if (src.type == "point")
+            light.type = LightType::Point;
+        else if (src.type == "spot")
+            light.type = LightType::Spot;
+        else if (src.type == "directional")
+            light.type = LightType::Directional;
+        else
+            fail(lightWhat, "unknown type \"" + src.type + "\"");
         std::set<std::string> taken;
-        for (const Light& l : mScene.lights) taken.insert(l.name);
-        light.name = uniqueName(src.name.empty() ? node.name : src.name,
-                                "light" + std::to_string(mScene.lights.size()), taken);
+        for (const Light& l : mScene.lights)
+            taken.insert(l.name);
+        light.name =
+            uniqueName(src.name.empty() ? node.name : src.name, "light" + std::to_string(mScene.lights.size()), taken);
         if (!src.color.empty()) {
             if (src.color.size() != 3) fail(lightWhat, "color must have 3 numbers");
             light.color = glm::vec3(static_cast<float>(src.color[0]), static_cast<float>(src.color[1]),
@@ -761,7 +784,8 @@ private:
 
         Camera camera;
         std::set<std::string> taken;
-        for (const Camera& c : mScene.cameras) taken.insert(c.name);
+        for (const Camera& c : mScene.cameras)
+            taken.insert(c.name);
         camera.name = uniqueName(src.name.empty() ? node.name : src.name,
                                  "camera" + std::to_string(mScene.cameras.size()), taken);
         camera.position = glm::vec3(world[3]);
@@ -809,7 +833,8 @@ public:
         checkObject(object, where);
         for (auto it = object.begin(); it != object.end(); ++it) {
             bool known = false;
-            for (const char* key : allowed) known = known || it.key() == key;
+            for (const char* key : allowed)
+                known = known || it.key() == key;
             if (!known) fail(where, "unknown key \"" + it.key() + "\"");
         }
     }
@@ -872,8 +897,8 @@ Scene loadSource(const SceneFileReader& reader, const std::string& source)
     if (source.rfind(builtinPrefix, 0) == 0) {
         const std::string name = source.substr(builtinPrefix.size());
         if (!isBuiltinScene(name))
-            reader.fail("", "\"source\": unknown built-in scene \"" + name + "\" (built-in scenes: " +
-                                joinNames(builtinSceneNames()) + ")");
+            reader.fail("", "\"source\": unknown built-in scene \"" + name +
+                                "\" (built-in scenes: " + joinNames(builtinSceneNames()) + ")");
         return makeBuiltinScene(name);
     }
     if (source.rfind(gltfPrefix, 0) == 0) {
@@ -887,17 +912,17 @@ Scene loadSource(const SceneFileReader& reader, const std::string& source)
 
 void mergeLight(const SceneFileReader& r, Scene& scene, const Json& object, const std::string& where)
 {
-    r.checkKeys(object, where,
-                {"name", "type", "position", "direction", "color", "intensity", "innerConeDeg", "outerConeDeg",
-                 "range"});
+    r.checkKeys(
+        object, where,
+        {"name", "type", "position", "direction", "color", "intensity", "innerConeDeg", "outerConeDeg", "range"});
     const Json* name = SceneFileReader::find(object, "name");
     if (name == nullptr) r.fail(where, "needs a \"name\"");
     const std::string lightName = r.string(*name, where, "name");
     if (lightName.empty()) r.fail(where, "\"name\" must not be empty");
 
     // A light with an existing name is overridden key by key; otherwise it is a new light.
-    auto existing = std::find_if(scene.lights.begin(), scene.lights.end(),
-                                 [&](const Light& l) { return l.name == lightName; });
+    auto existing =
+        std::find_if(scene.lights.begin(), scene.lights.end(), [&](const Light& l) { return l.name == lightName; });
     Light light;
     if (existing != scene.lights.end()) {
         light = *existing;
@@ -908,10 +933,14 @@ void mergeLight(const SceneFileReader& r, Scene& scene, const Json& object, cons
 
     if (const Json* v = SceneFileReader::find(object, "type")) {
         const std::string type = r.string(*v, where, "type");
-        if (type == "point") light.type = LightType::Point;
-        else if (type == "spot") light.type = LightType::Spot;
-        else if (type == "directional") light.type = LightType::Directional;
-        else r.fail(where, "\"type\" must be \"point\", \"spot\" or \"directional\" (got \"" + type + "\")");
+        if (type == "point")
+            light.type = LightType::Point;
+        else if (type == "spot")
+            light.type = LightType::Spot;
+        else if (type == "directional")
+            light.type = LightType::Directional;
+        else
+            r.fail(where, "\"type\" must be \"point\", \"spot\" or \"directional\" (got \"" + type + "\")");
     }
     if (const Json* v = SceneFileReader::find(object, "position")) light.position = r.vec3(*v, where, "position");
     if (const Json* v = SceneFileReader::find(object, "direction")) {
@@ -946,8 +975,10 @@ void mergeLight(const SceneFileReader& r, Scene& scene, const Json& object, cons
         if (light.range < 0.0f) r.fail(where, "\"range\" must be >= 0 (0 = infinite)");
     }
 
-    if (existing != scene.lights.end()) *existing = light;
-    else scene.lights.push_back(light);
+    if (existing != scene.lights.end())
+        *existing = light;
+    else
+        scene.lights.push_back(light);
 }
 
 void mergeCamera(const SceneFileReader& r, Scene& scene, const Json& object, const std::string& where)
@@ -959,8 +990,8 @@ void mergeCamera(const SceneFileReader& r, Scene& scene, const Json& object, con
     if (cameraName.empty()) r.fail(where, "\"name\" must not be empty");
 
     // Same rule as lights: an existing name is overridden key by key.
-    auto existing = std::find_if(scene.cameras.begin(), scene.cameras.end(),
-                                 [&](const Camera& c) { return c.name == cameraName; });
+    auto existing =
+        std::find_if(scene.cameras.begin(), scene.cameras.end(), [&](const Camera& c) { return c.name == cameraName; });
     Camera camera;
     if (existing != scene.cameras.end()) {
         camera = *existing;
@@ -986,8 +1017,10 @@ void mergeCamera(const SceneFileReader& r, Scene& scene, const Json& object, con
         glm::length(glm::cross(glm::normalize(forward), glm::normalize(camera.up))) < 1e-4f)
         r.fail(where, "\"up\" must be non-zero and not parallel to the view direction");
 
-    if (existing != scene.cameras.end()) *existing = camera;
-    else scene.cameras.push_back(camera);
+    if (existing != scene.cameras.end())
+        *existing = camera;
+    else
+        scene.cameras.push_back(camera);
 }
 
 void mergeAnimation(const SceneFileReader& r, Scene& scene, const Json& object, const std::string& where)
@@ -1042,8 +1075,10 @@ void mergeAnimation(const SceneFileReader& r, Scene& scene, const Json& object, 
     // An animation with an existing name (from the source) is replaced.
     auto existing = std::find_if(scene.animations.begin(), scene.animations.end(),
                                  [&](const vplgi::Animation& a) { return a.name == animation.name; });
-    if (existing != scene.animations.end()) *existing = animation;
-    else scene.animations.push_back(animation);
+    if (existing != scene.animations.end())
+        *existing = animation;
+    else
+        scene.animations.push_back(animation);
 }
 
 } // namespace
@@ -1109,8 +1144,9 @@ SceneDescription loadSceneFile(const std::string& path)
     }
 
     SceneFileReader r(path);
-    r.checkKeys(doc, "", {"name", "source", "replaceLights", "lights", "replaceCameras", "cameras", "animations",
-                          "technique", "settings"});
+    r.checkKeys(doc, "",
+                {"name", "source", "replaceLights", "lights", "replaceCameras", "cameras", "animations", "technique",
+                 "settings"});
 
     const Json* source = SceneFileReader::find(doc, "source");
     if (source == nullptr) r.fail("", "needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -1139,8 +1175,8 @@ SceneDescription loadSceneFile(const std::string& path)
         for (std::size_t i = 0; i < cameras.size(); ++i)
             mergeCamera(r, scene, cameras[i], "cameras[" + std::to_string(i) + "]");
     }
-    auto defaultCamera = std::find_if(scene.cameras.begin(), scene.cameras.end(),
-                                      [](const Camera& c) { return c.name == "default"; });
+    auto defaultCamera =
+        std::find_if(scene.cameras.begin(), scene.cameras.end(), [](const Camera& c) { return c.name == "default"; });
     if (defaultCamera != scene.cameras.end()) std::rotate(scene.cameras.begin(), defaultCamera, defaultCamera + 1);
     if (scene.cameras.empty()) scene.cameras.push_back(makeDefaultCamera(scene.worldBounds()));
 
@@ -1156,10 +1192,14 @@ SceneDescription loadSceneFile(const std::string& path)
         r.checkObject(*v, "settings");
         for (auto it = v->begin(); it != v->end(); ++it) {
             std::string value;
-            if (it->is_string()) value = it->get<std::string>();
-            else if (it->is_boolean()) value = it->get<bool>() ? "true" : "false";
-            else if (it->is_number()) value = it->dump(); // shortest round-trip text, "1.0" / "4096"
-            else r.fail("settings", SceneFileReader::quote(it.key()) + " must be a number, bool or string");
+            if (it->is_string())
+                value = it->get<std::string>();
+            else if (it->is_boolean())
+                value = it->get<bool>() ? "true" : "false";
+            else if (it->is_number())
+                value = it->dump(); // shortest round-trip text, "1.0" / "4096"
+            else
+                r.fail("settings", SceneFileReader::quote(it.key()) + " must be a number, bool or string");
             if (it.key().empty()) r.fail("settings", "keys must not be empty");
             description.settings.emplace_back(it.key(), value);
         }

@@ -1,6 +1,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -118,14 +120,21 @@ std::unique_ptr<Context> createHeadlessContext(const ContextOptions& options)
     std::vector<std::string> failures;
     std::string failure;
     std::unique_ptr<Context> context;
+    // VPLGI_EGL_PLATFORM=surfaceless|device|pbuffer restricts the search to one platform (tests use
+    // it to exercise the fallbacks).
+    const char* forced = std::getenv("VPLGI_EGL_PLATFORM");
+    const std::string only = forced ? forced : "";
+    require(only.empty() || only == "surfaceless" || only == "device" || only == "pbuffer",
+            "VPLGI_EGL_PLATFORM must be surfaceless, device or pbuffer");
+    auto allowed = [&](const char* name) { return only.empty() || only == name; };
     // eglGetPlatformDisplayEXT, not the EGL 1.5 entry point: libepoxy aborts on the latter before a
     // display exists (../shared/ENVIRONMENT.md).
-    if (hasClientExtension("EGL_MESA_platform_surfaceless")) {
+    if (allowed("surfaceless") && hasClientExtension("EGL_MESA_platform_surfaceless")) {
         EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         context = tryDisplay(display, false, "EGL surfaceless", options, failure);
         if (!context) failures.push_back(failure);
     }
-    if (!context && hasClientExtension("EGL_EXT_platform_device")) {
+    if (!context && allowed("device") && hasClientExtension("EGL_EXT_platform_device")) {
         EGLDeviceEXT devices[8];
         EGLint count = 0;
         if (eglQueryDevicesEXT(8, devices, &count) == EGL_TRUE) {
@@ -136,7 +145,7 @@ std::unique_ptr<Context> createHeadlessContext(const ContextOptions& options)
             }
         }
     }
-    if (!context) {
+    if (!context && allowed("pbuffer")) {
         context = tryDisplay(eglGetDisplay(EGL_DEFAULT_DISPLAY), true, "EGL pbuffer", options, failure);
         if (!context) failures.push_back(failure);
     }

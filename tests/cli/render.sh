@@ -62,3 +62,13 @@ else
   echo "skipped: ../shared/scenes/cornell-box/CornellBox.glb is absent"
 fi
 echo "render checks passed"
+
+# Every EGL platform of the headless context works on its own (the fallbacks are real).
+for platform in surfaceless device pbuffer; do
+  # The pbuffer fallback uses the default display: Mesa picks the surfaceless platform for it
+  # when EGL_PLATFORM says so (or X under Xvfb).
+  out=$(EGL_PLATFORM=surfaceless VPLGI_EGL_PLATFORM=$platform "$vplgi" render --scene cornell --width 32 --height 32 --out "$work/p.png" 2>&1)
+  echo "$out" | grep -q "context = EGL $platform" || { echo "FAIL: EGL $platform"; echo "$out" | tail -3; exit 1; }
+  echo "EGL $platform: ok"
+done
+echo "all render checks passed"

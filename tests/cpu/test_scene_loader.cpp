@@ -30,8 +30,8 @@
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 using Catch::Matchers::Contains;
+using nlohmann::json;
 
 constexpr int kFloat = 5126;
 constexpr int kUByte = 5121;
@@ -86,8 +86,7 @@ std::string base64(const std::string& bytes)
     return out;
 }
 
-template <typename T>
-std::string bytesOf(const std::vector<T>& values)
+template <typename T> std::string bytesOf(const std::vector<T>& values)
 {
     std::string bytes(values.size() * sizeof(T), '\0');
     if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
@@ -96,7 +95,8 @@ std::string bytesOf(const std::vector<T>& values)
 
 void appendU32(std::string& out, std::uint32_t v)
 {
-    for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFFu);
+    for (int i = 0; i < 4; ++i)
+        out += static_cast<char>((v >> (8 * i)) & 0xFFu);
 }
 
 void appendU16(std::string& out, std::uint16_t v)
@@ -112,15 +112,16 @@ public:
 
     int addView(const std::string& bytes, int byteStride = 0)
     {
-        while (mBin.size() % 4 != 0) mBin += '\0';
+        while (mBin.size() % 4 != 0)
+            mBin += '\0';
         json view = {{"buffer", 0}, {"byteOffset", mBin.size()}, {"byteLength", bytes.size()}};
         if (byteStride > 0) view["byteStride"] = byteStride;
         mBin += bytes;
         return append("bufferViews", view);
     }
 
-    int addAccessor(int view, int componentType, std::size_t count, const std::string& type,
-                    std::size_t byteOffset = 0, bool normalized = false)
+    int addAccessor(int view, int componentType, std::size_t count, const std::string& type, std::size_t byteOffset = 0,
+                    bool normalized = false)
     {
         json accessor = {{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
         if (byteOffset != 0) accessor["byteOffset"] = byteOffset;
@@ -171,9 +172,11 @@ public:
         json out = doc;
         out["buffers"] = json::array({{{"byteLength", mBin.size()}}});
         std::string text = out.dump();
-        while (text.size() % 4 != 0) text += ' ';
+        while (text.size() % 4 != 0)
+            text += ' ';
         std::string bin = mBin;
-        while (bin.size() % 4 != 0) bin += '\0';
+        while (bin.size() % 4 != 0)
+            bin += '\0';
         std::string file;
         appendU32(file, 0x46546C67u); // "glTF"
         appendU32(file, 2);
@@ -237,7 +240,8 @@ std::string twoPixelBmp()
     appendU32(bmp, 1);
     appendU16(bmp, 1);
     appendU16(bmp, 24);
-    for (std::uint32_t v : {0u, 8u, 2835u, 2835u, 0u, 0u}) appendU32(bmp, v);
+    for (std::uint32_t v : {0u, 8u, 2835u, 2835u, 0u, 0u})
+        appendU32(bmp, v);
     bmp += std::string("\x00\x00\xff\x00\xff\x00\x00\x00", 8); // BGR red, BGR green, row padding
     return bmp;
 }
@@ -247,21 +251,23 @@ std::uint32_t crc32(const std::string& bytes)
     std::uint32_t crc = 0xFFFFFFFFu;
     for (char c : bytes) {
         crc ^= static_cast<std::uint8_t>(c);
-        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+        for (int k = 0; k < 8; ++k)
+            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
     }
     return ~crc;
 }
 
 void appendBigEndian32(std::string& out, std::uint32_t v)
 {
-    for (int i = 3; i >= 0; --i) out += static_cast<char>((v >> (8 * i)) & 0xFFu);
+    for (int i = 3; i >= 0; --i)
+        out += static_cast<char>((v >> (8 * i)) & 0xFFu);
 }
 
 // A 1x1 16-bit grey + alpha PNG (grey 0xFF00, alpha 0x8080), zlib "stored" (uncompressed) data.
 std::string sixteenBitPng()
 {
     const std::string raw("\x00\xff\x00\x80\x80", 5); // filter byte 0, then big-endian samples
-    std::uint32_t a = 1, b = 0;                           // Adler-32 of the raw data
+    std::uint32_t a = 1, b = 0;                       // Adler-32 of the raw data
     for (char c : raw) {
         a = (a + static_cast<std::uint8_t>(c)) % 65521u;
         b = (b + a) % 65521u;
@@ -312,13 +318,13 @@ TEST_CASE("glTF: node TRS places a triangle in the world (interleaved data in a 
     const int positions = b.addAccessor(view, kFloat, 3, "VEC3", 0);
     const int normals = b.addAccessor(view, kFloat, 3, "VEC3", 12);
     const int indices = b.addAccessor(b.addView(std::string("\x00\x01\x02", 3)), kUByte, 3, "SCALAR");
-    b.append("meshes", {{"primitives", json::array({{{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}},
-                                                     {"indices", indices}}})}});
+    b.append("meshes",
+             {{"primitives",
+               json::array({{{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}}, {"indices", indices}}})}});
     // T * R * S: scale 2, 90 degrees about +z, then translate (1,2,3).
-    b.append("nodes", {{"mesh", 0},
-                       {"translation", {1, 2, 3}},
-                       {"rotation", {0, 0, kHalfSqrt2, kHalfSqrt2}},
-                       {"scale", {2, 2, 2}}});
+    b.append(
+        "nodes",
+        {{"mesh", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, 0, kHalfSqrt2, kHalfSqrt2}}, {"scale", {2, 2, 2}}});
     b.setScene({0});
     writeFile(dir.file("tri.gltf"), b.gltfWithBin("tri.bin"));
     writeFile(dir.file("tri.bin"), b.binary());
@@ -341,7 +347,7 @@ TEST_CASE("glTF: node TRS places a triangle in the world (interleaved data in a 
     CHECK(scene.materials[0].name == "default");
 }
 
-TEST_CASE("glTF: missing normals are generated flat, u16 indices, normalized u8 texcoords", "[scene_loader]")
+TEST_CASE("glTF: missing normals are generated flat (u16 indices and normalized u8 texcoords)", "[scene_loader]")
 {
     TempDir dir;
     GltfBuilder b;
@@ -374,7 +380,7 @@ TEST_CASE("glTF: missing normals are generated flat, u16 indices, normalized u8 
     CHECK_FALSE(mesh.hasTangents); // no normal map, no tangents needed
 }
 
-TEST_CASE("glTF: materials, emissive strength, specular, textures and images", "[scene_loader]")
+TEST_CASE("glTF: materials with emissive strength and specular plus textures and images", "[scene_loader]")
 {
     TempDir dir;
     GltfBuilder b;
@@ -383,8 +389,8 @@ TEST_CASE("glTF: materials, emissive strength, specular, textures and images", "
     const int texcoords = b.addData<float>({0, 0, 1, 0, 0, 1}, kFloat, "VEC2", 2);
     json attributes = {{"POSITION", positions}, {"NORMAL", normals}, {"TEXCOORD_0", texcoords}};
     b.append("meshes", {{"name", "pair"},
-                        {"primitives", json::array({{{"attributes", attributes}, {"material", 0}},
-                                                    {{"attributes", attributes}}})}});
+                        {"primitives",
+                         json::array({{{"attributes", attributes}, {"material", 0}}, {{"attributes", attributes}}})}});
     b.append("nodes", {{"mesh", 0}});
     b.setScene({0});
     b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_materials_specular"};
@@ -555,7 +561,8 @@ TEST_CASE("glTF: triangle strips and fans become lists", "[scene_loader]")
     CHECK(scene.meshes[0].triangleCount() == 2);
     CHECK(scene.meshes[1].triangleCount() == 2);
     // Both strip triangles keep the strip's winding: normals face +z.
-    for (const vplgi::Vertex& v : scene.meshes[0].vertices) CHECK(near(v.normal, {0, 0, 1}));
+    for (const vplgi::Vertex& v : scene.meshes[0].vertices)
+        CHECK(near(v.normal, {0, 0, 1}));
 }
 
 TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_loader]")
@@ -671,7 +678,8 @@ TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_l
     }
 }
 
-TEST_CASE("scene file: built-in source with light, camera, animation and settings overrides", "[scene_loader]")
+TEST_CASE("scene file: a built-in source with light and camera overrides plus animations and settings",
+          "[scene_loader]")
 {
     TempDir dir;
     const std::string path = dir.file("demo.json");
@@ -741,7 +749,7 @@ TEST_CASE("scene file: built-in source with light, camera, animation and setting
     CHECK(near(animated.findCamera("side")->position, {0.25f, 0, 0.25f}));
 }
 
-TEST_CASE("scene file: glTF source relative to the file, replaced lights and cameras", "[scene_loader]")
+TEST_CASE("scene file: a glTF source relative to the file with replaced lights and cameras", "[scene_loader]")
 {
     TempDir dir;
     GltfBuilder b;
@@ -793,8 +801,7 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
 
     CHECK(errorFor(R"({"source": "builtin:furnace", "lights": [
         {"name": "a", "type": "point"}, {"name": "b", "type": "point"},
-        {"name": "c", "type": "point", "intensty": 3}]})") ==
-          path + ": lights[2]: unknown key \"intensty\"");
+        {"name": "c", "type": "point", "intensty": 3}]})") == path + ": lights[2]: unknown key \"intensty\"");
     CHECK(errorFor(R"({"source": "builtin:furnace", "lightz": []})") == path + ": unknown key \"lightz\"");
     CHECK(errorFor(R"({"source": "builtin:furnace", "lights": [{"name": "a", "type": "point", "intensity": -1}]})") ==
           path + ": lights[0]: \"intensity\" must be >= 0");
@@ -849,7 +856,7 @@ TEST_CASE("loadSceneSpec resolves built-in names and paths", "[scene_loader]")
     CHECK_THAT(errorOf([&] { vplgi::loadSceneSpec(dir.file("tri.obj")); }), Contains("not a scene"));
 }
 
-TEST_CASE("the repository's scenes/*.json load and animate", "[scene_loader]")
+TEST_CASE("scene files of the repository load and animate", "[scene_loader]")
 {
     const fs::path scenes = fs::path(VPLGI_SOURCE_DIR) / "scenes";
     std::vector<std::string> loaded;

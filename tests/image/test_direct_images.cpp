@@ -38,6 +38,49 @@ Ray pixelRay(const Camera& camera, int width, int height, int x, int y)
     return ray;
 }
 
+// The CPU evaluation of the renderer's direct light (same emitters, BRDF, Embree visibility).
+ImageRGBA32F cpuDirectImage(const Scene& scene, const DirectLightSet& lights, const Camera& camera, int width, int height)
+{
+    RayScene rays(scene);
+    ImageRGBA32F image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(static_cast<std::size_t>(width) * height * 4, 1.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            Ray ray = pixelRay(camera, width, height, x, y);
+            Hit hit = rays.intersect(ray);
+            glm::vec3 value(0.0f);
+            if (hit.valid()) {
+                SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
+                value = s.emission + evaluateDirectLight(rays, lights, s, -ray.direction);
+            }
+            float* c = image.at(x, y);
+            c[0] = value.r, c[1] = value.g, c[2] = value.b;
+        }
+    return image;
+}
+
+double luminance(const float* c)
+{
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+
+// Fraction of pixels lit on the CPU whose luminance agrees within `tolerance` (relative).
+double agreement(const ImageRGBA32F& gpu, const ImageRGBA32F& cpu, double tolerance, int* litCount = nullptr)
+{
+    int agreeing = 0, lit = 0;
+    for (int y = 0; y < gpu.height; ++y)
+        for (int x = 0; x < gpu.width; ++x) {
+            double g = luminance(gpu.at(x, y)), c = luminance(cpu.at(x, y));
+            if (c <= 1e-4) continue;
+            ++lit;
+            if (std::abs(g / c - 1.0) <= tolerance) ++agreeing;
+        }
+    if (litCount) *litCount = lit;
+    return lit > 0 ? static_cast<double>(agreeing) / lit : 0.0;
+}
+
 } // namespace
 
 TEST_CASE("furnace: direct radiance equals rho I0 / (pi R^2)", "[image][furnace]")
@@ -75,28 +118,13 @@ TEST_CASE("cornell: direct light matches the CPU evaluation at floor and wall pi
     const Camera& camera = scene.cameras[0];
     renderer->renderFrame(camera, width, height);
     ImageRGBA32F gpu = renderer->readDirect();
-    RayScene rays(scene);
-    const DirectLightSet& lights = renderer->lights();
-
-    ImageRGBA32F cpu = gpu;
+    const ImageRGBA32F cpu = cpuDirectImage(scene, renderer->lights(), camera, width, height);
     int compared = 0, within = 0;
     double worst = 0.0;
     // Chosen pixels, lit and away from shadow edges: floor, back wall (centre, upper corners, right of
     // the tall block), green and red walls, the tall block's front face.
     const std::vector<glm::ivec2> chosen = {{30, 115}, {64, 40}, {85, 60},  {30, 30}, {100, 30},
                                             {120, 64}, {110, 95}, {8, 64}, {45, 80}, {40, 110}};
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            Ray ray = pixelRay(camera, width, height, x, y);
-            Hit hit = rays.intersect(ray);
-            glm::vec3 value(0.0f);
-            if (hit.valid()) {
-                SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
-                value = s.emission + evaluateDirectLight(rays, lights, s, -ray.direction);
-            }
-            float* c = cpu.at(x, y);
-            c[0] = value.r, c[1] = value.g, c[2] = value.b;
-        }
     for (glm::ivec2 p : chosen) {
         const float* g = gpu.at(p.x, p.y);
         const float* c = cpu.at(p.x, p.y);
@@ -111,20 +139,94 @@ TEST_CASE("cornell: direct light matches the CPU evaluation at floor and wall pi
         CHECK(error <= 0.05);
     }
     // Over the whole image (shadow edges included) most pixels must agree as well.
-    int agreeing = 0, lit = 0;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            double lumG = gpu.at(x, y)[1], lumC = cpu.at(x, y)[1];
-            if (lumC <= 1e-4) continue;
-            ++lit;
-            if (std::abs(lumG / lumC - 1.0) <= 0.05) ++agreeing;
-        }
-    INFO("whole image: " << agreeing << " of " << lit << " lit pixels within 5%");
-    if (within != compared || agreeing < 0.9 * lit) {
+    int lit = 0;
+    const double agreeing = agreement(gpu, cpu, 0.05, &lit);
+    INFO("whole image: " << agreeing * 100.0 << "% of " << lit << " lit pixels within 5%; worst chosen " << worst);
+    if (within != compared || agreeing < 0.9) {
         test::saveTestImage("cornell-direct-gpu", gpu);
         test::saveTestImage("cornell-direct-cpu", cpu);
     }
-    CHECK(agreeing >= 0.9 * lit);
+    CHECK(agreeing >= 0.9);
+}
+
+TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluation", "[image][lights]")
+{
+    // A floor, two boxes (one glossy metal, one glossy dielectric), a spot light and a sun.
+    Scene scene;
+    scene.name = "spot-and-sun";
+    auto material = [&](glm::vec3 color, float metallic, float roughness, float specular) {
+        Material m;
+        m.baseColor = glm::vec4(color, 1.0f);
+        m.metallic = metallic;
+        m.roughness = roughness;
+        m.specular = specular;
+        scene.materials.push_back(m);
+        return static_cast<int>(scene.materials.size()) - 1;
+    };
+    auto addBox = [&](glm::vec3 lower, glm::vec3 upper, int mat) {
+        Mesh mesh;
+        mesh.material = mat;
+        const glm::vec3 c[8] = {{lower.x, lower.y, lower.z}, {upper.x, lower.y, lower.z}, {upper.x, upper.y, lower.z},
+                                {lower.x, upper.y, lower.z}, {lower.x, lower.y, upper.z}, {upper.x, lower.y, upper.z},
+                                {upper.x, upper.y, upper.z}, {lower.x, upper.y, upper.z}};
+        const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+        for (const auto& f : faces) {
+            std::uint32_t base = static_cast<std::uint32_t>(mesh.vertices.size());
+            glm::vec3 n = glm::normalize(glm::cross(c[f[1]] - c[f[0]], c[f[2]] - c[f[0]]));
+            for (int k = 0; k < 4; ++k) {
+                Vertex v;
+                v.position = c[f[k]];
+                v.normal = n;
+                mesh.vertices.push_back(v);
+            }
+            for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+        }
+        scene.meshes.push_back(mesh);
+        scene.instances.push_back(Instance{static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
+    };
+    addBox({-5, -0.1f, -5}, {5, 0, 5}, material({0.6f, 0.6f, 0.6f}, 0.0f, 1.0f, 0.0f));
+    addBox({-1.5f, 0, -1}, {-0.5f, 1.2f, 0}, material({0.9f, 0.6f, 0.3f}, 1.0f, 0.35f, 1.0f));
+    addBox({0.5f, 0, -0.5f}, {1.3f, 0.6f, 0.3f}, material({0.2f, 0.4f, 0.8f}, 0.0f, 0.3f, 1.0f));
+    Light spot;
+    spot.name = "spot";
+    spot.type = LightType::Spot;
+    spot.position = {0.5f, 3.0f, 1.0f};
+    spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, -0.4f));
+    spot.intensity = 6.0f;
+    spot.innerConeAngle = 0.35f;
+    spot.outerConeAngle = 0.6f;
+    scene.lights.push_back(spot);
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.5f, -1.0f, -0.3f));
+    sun.color = {1.0f, 0.9f, 0.8f};
+    sun.intensity = 1.5f;
+    scene.lights.push_back(sun);
+    Camera camera;
+    camera.name = "default";
+    camera.position = {0.5f, 2.5f, 4.5f};
+    camera.target = {0.0f, 0.3f, -0.3f};
+    camera.fovY = 0.9f;
+    scene.cameras.push_back(camera);
+    scene.validate();
+
+    RendererParams params;
+    params.shadow.mapSize = 4096;
+    auto renderer = makeRenderer(scene, params);
+    const int width = 128, height = 96;
+    renderer->renderFrame(camera, width, height);
+    const ImageRGBA32F gpu = renderer->readDirect();
+    const ImageRGBA32F cpu = cpuDirectImage(scene, renderer->lights(), camera, width, height);
+    int lit = 0;
+    const double agreeing = agreement(gpu, cpu, 0.05, &lit);
+    INFO(agreeing * 100.0 << "% of " << lit << " lit pixels within 5%");
+    if (agreeing < 0.9) {
+        test::saveTestImage("spot-sun-gpu", gpu);
+        test::saveTestImage("spot-sun-cpu", cpu);
+    }
+    CHECK(lit > width * height / 2);
+    CHECK(agreeing >= 0.9);
 }
 
 TEST_CASE("shared glTF scenes load and render", "[image][shared]")

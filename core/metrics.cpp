@@ -1,0 +1,122 @@
+#include "metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "error.h"
+
+namespace vplgi {
+
+double toneMappedLuminance(const float* rgb, double exposure)
+{
+    double y = exposure * (0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]);
+    y = std::max(0.0, y);
+    return y / (1.0 + y);
+}
+
+namespace {
+
+void requireSameSize(const ImageRGBA32F& a, const ImageRGBA32F& b)
+{
+    require(a.width == b.width && a.height == b.height,
+            "images differ in size: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
+                std::to_string(b.width) + "x" + std::to_string(b.height));
+}
+
+double mapped(double y, double exposure)
+{
+    y = std::max(0.0, y * exposure);
+    return y / (1.0 + y);
+}
+
+} // namespace
+
+ImageErrors compareImages(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure)
+{
+    requireSameSize(method, reference);
+    ImageErrors e;
+    const std::size_t pixels = static_cast<std::size_t>(method.width) * method.height;
+    double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, sumYm = 0.0, sumYr = 0.0;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const float* a = &method.pixels[p * 4];
+        const float* b = &reference.pixels[p * 4];
+        sumAbs += std::abs(toneMappedLuminance(a, exposure) - toneMappedLuminance(b, exposure));
+        for (int c = 0; c < 3; ++c) {
+            double d = double(a[c]) - double(b[c]);
+            sumSq += d * d;
+            sumRel += d * d / (double(b[c]) * b[c] + 0.01);
+        }
+        sumYm += 0.2126 * a[0] + 0.7152 * a[1] + 0.0722 * a[2];
+        sumYr += 0.2126 * b[0] + 0.7152 * b[1] + 0.0722 * b[2];
+    }
+    e.meanAbsToneMapped = sumAbs / pixels;
+    e.rmse = std::sqrt(sumSq / (3.0 * pixels));
+    e.relativeMSE = sumRel / (3.0 * pixels);
+    e.meanRelativeLuminance = sumYr > 0.0 ? sumYm / sumYr - 1.0 : 0.0;
+    return e;
+}
+
+ImageRGBA8 errorHeatMap(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure, double maxError)
+{
+    requireSameSize(method, reference);
+    // A perceptually ordered ramp: black, purple, orange, yellow, white.
+    static const glm::vec3 kRamp[5] = {{0, 0, 0}, {0.35f, 0.05f, 0.5f}, {0.9f, 0.3f, 0.1f}, {1.0f, 0.85f, 0.2f}, {1, 1, 1}};
+    ImageRGBA8 out;
+    out.width = method.width;
+    out.height = method.height;
+    out.pixels.resize(static_cast<std::size_t>(out.width) * out.height * 4);
+    for (std::size_t p = 0; p < static_cast<std::size_t>(out.width) * out.height; ++p) {
+        double e = std::abs(toneMappedLuminance(&method.pixels[p * 4], exposure) -
+                            toneMappedLuminance(&reference.pixels[p * 4], exposure));
+        double t = std::clamp(e / std::max(maxError, 1e-12), 0.0, 1.0) * 4.0;
+        int i = std::min(3, static_cast<int>(t));
+        glm::vec3 c = glm::mix(kRamp[i], kRamp[i + 1], static_cast<float>(t - i));
+        for (int k = 0; k < 3; ++k) out.pixels[p * 4 + k] = static_cast<std::uint8_t>(std::lround(255.0 * c[k]));
+        out.pixels[p * 4 + 3] = 255;
+    }
+    return out;
+}
+
+TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
+                              const std::vector<std::vector<double>>& reference, double exposure)
+{
+    require(method.size() == reference.size() && !method.empty(), "temporal errors need the same non-zero frame count");
+    TemporalErrors t;
+    std::size_t countE = 0, countD = 0;
+    std::vector<double> previous;
+    for (std::size_t f = 0; f < method.size(); ++f) {
+        require(method[f].size() == reference[f].size(), "temporal errors: tracked pixel counts differ");
+        std::vector<double> current(method[f].size());
+        for (std::size_t j = 0; j < current.size(); ++j) {
+            current[j] = mapped(method[f][j], exposure) - mapped(reference[f][j], exposure);
+            t.meanAbsError += std::abs(current[j]);
+            ++countE;
+            if (f > 0) {
+                t.meanAbsDerivative += std::abs(current[j] - previous[j]);
+                ++countD;
+            }
+        }
+        previous = std::move(current);
+    }
+    if (countE) t.meanAbsError /= static_cast<double>(countE);
+    if (countD) t.meanAbsDerivative /= static_cast<double>(countD);
+    return t;
+}
+
+std::vector<glm::ivec2> trackedPixels(int width, int height, int count)
+{
+    std::vector<glm::ivec2> pixels;
+    const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(count * double(width) / height))));
+    const int rows = std::max(1, (count + columns - 1) / columns);
+    for (int i = 0; i < count; ++i) {
+        int cx = i % columns, cy = i / columns;
+        // Cell centres, shifted by a fixed irrational offset so the grid does not align with geometry.
+        double fx = (cx + 0.5 + 0.25 * std::sin(1.7 * i)) / columns;
+        double fy = (cy + 0.5 + 0.25 * std::cos(2.3 * i)) / rows;
+        pixels.push_back({std::clamp(static_cast<int>(fx * width), 0, width - 1),
+                          std::clamp(static_cast<int>(fy * height), 0, height - 1)});
+    }
+    return pixels;
+}
+
+} // namespace vplgi

@@ -1,0 +1,45 @@
+// Error metrics for comparing renders with references (SMCIR section 5, MATH.md section 8).
+//
+// Tone-mapped metrics use one fixed exposure for method and reference (not each image's own
+// log-average), Reinhard on luminance: T(Y) = eY / (1 + eY), so |E| is deterministic and in [0, 1].
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "image_io.h"
+
+namespace vplgi {
+
+// Reinhard-mapped luminance of a linear RGB radiance.
+double toneMappedLuminance(const float* rgb, double exposure);
+
+struct ImageErrors {
+    double meanAbsToneMapped = 0.0; // mean |T(Y_method) - T(Y_ref)| (SMCIR's |E| on a single frame)
+    double rmse = 0.0;              // sqrt(mean over pixels and RGB of (a - b)^2), linear radiance
+    double relativeMSE = 0.0;       // mean over pixels and RGB of (a - b)^2 / (b^2 + 0.01)
+    double meanRelativeLuminance = 0.0; // mean(Y_method) / mean(Y_ref) - 1 (bias of the mean)
+};
+
+// Throws Error when the sizes differ.
+ImageErrors compareImages(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure);
+
+// Per-pixel |T(Y_method) - T(Y_ref)| as a heat map (0 black -> 1 white through purple/orange),
+// scaled so that `maxError` maps to the top of the colour ramp.
+ImageRGBA8 errorHeatMap(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure, double maxError);
+
+// Temporal error at tracked pixels (SMCIR eq. 10): for frames t = 0..T-1 and tracked pixels j,
+// E_tj = T(Y_method,tj) - T(Y_ref,tj), E'_tj = E_tj - E_(t-1)j (finite difference per frame).
+struct TemporalErrors {
+    double meanAbsError = 0.0;      // average |E| over all frames and tracked pixels
+    double meanAbsDerivative = 0.0; // average |E'| over frames 1..T-1 and tracked pixels
+};
+// `method[t][j]` and `reference[t][j]`: linear luminance at tracked pixel j in frame t.
+TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
+                              const std::vector<std::vector<double>>& reference, double exposure);
+
+// Evenly spread tracked pixels (deterministic): a jittered grid of `count` pixels away from borders.
+std::vector<glm::ivec2> trackedPixels(int width, int height, int count);
+
+} // namespace vplgi

@@ -1,0 +1,157 @@
+// The ground-truth reference: an Embree path tracer over core::Scene with the shared material.
+//
+// Intro
+// -----
+// Every GI technique in vplgi is judged against this renderer. It solves the rendering equation for
+// the scene exactly as the GPU sees it (same surfaces through surfaceAt, same BRDF through
+// shared::evaluateBRDF, same punctual emitters through buildDirectLights and evaluateDirectLight,
+// same camera rays), with nothing clamped or filtered except what a mode asks for. It is slow and
+// simple on purpose: a unidirectional path tracer with next-event estimation and multiple
+// importance sampling, as pbrt-v4's PathIntegrator.
+//
+// Overview
+// --------
+//  renderReference()            passes of 1, 2, 4, ... samples per pixel until `spp` or the time
+//   |                           budget; after each pass the main thread reports progress
+//   +- tbb::parallel_for tiles  every pixel sums its samples in sample-index order
+//       +- radiance(pixel, s)   one camera path; its random numbers come only from
+//                               hash(seed, pixel index, sample index)
+//
+// Details
+// -------
+//  Units are those of core/scene.h: point/spot intensity [W/sr], directional irradiance [W/m^2],
+//  emission radiance [W/(m^2 sr)]; the image holds radiance [W/(m^2 sr)] per pixel (linear RGB,
+//  rows top to bottom, alpha 1).
+//
+//  Camera: pixel (x, y), y down, sample jitter (u, v) in [0,1)^2 (a box filter over the pixel):
+//  NDC = ((x+u)/W*2-1, 1-(y+v)/H*2); the ray leaves camera.position through
+//  inverse(clipFromView(W/H) * viewFromWorld()) of the NDC point on the far plane, and is clipped to
+//  the near and far planes as the rasterizer clips (t from the near-plane point to the far one).
+//
+//  Vertices and depth: vertex 0 is the primary hit, vertex k the hit after k bounces. Light that
+//  reaches the camera after n reflections is emission seen at vertex n, or a light sample at vertex
+//  n-1. `maxDepth` is the largest n kept: emission is added at vertices 0..maxDepth and next-event
+//  estimation runs at vertices 0..maxDepth-1. maxDepth = 0 is emission only, 1 is direct light
+//  only, 2 adds one-bounce indirect (the furnace's L_2), and so on.
+//
+//  Surfaces: single-sided materials emit and reflect on their front (counter-clockwise) side only;
+//  a path that reaches the back of one ends there (the rasterizer culls it). Double-sided materials
+//  are shaded on the side the ray arrives from (surfaceAt).
+//
+//  Next-event estimation at every vertex (pbrt-v4 SampleLd):
+//   - point, spot and directional lights (delta lights): each of them, every time, with one shadow
+//     ray; evaluateDirectLight does it, so the Direct mode agrees with the CPU direct evaluation of
+//     the GPU's direct pass for punctual lights.
+//   - emissive triangles (area lights): one triangle chosen with probability proportional to its
+//     power (luminance(emission) * area), a uniform point on it, a shadow ray, and the power
+//     heuristic (beta = 2) against the BRDF density. Emission found by BRDF sampling gets the
+//     complementary weight. (buildDirectLights' cosine point samples of emitters are not used.)
+//  BRDF sampling (sampleBRDF): a mixture of the cosine-weighted diffuse lobe and the GGX lobe,
+//  sampled through its distribution of visible normals (Heitz 2018); the lobe is chosen with a
+//  probability from the Fresnel reflectance at the view angle against the diffuse albedo. The pdf
+//  (pdfBRDF) is the exact mixture density. Directions below the geometric horizon end the path.
+//  Ray offsets: 1e-4 * RayScene::sceneScale() along the geometric normal.
+//
+//  Russian roulette: before the path goes on to vertex k with k >= rrStartDepth, it survives with
+//  probability q = min(0.95, max component of the throughput) and the throughput is divided by q.
+//
+//  Modes (SMCIR Fig. 8 and Sec. 5.4):
+//   Full      everything.
+//   Direct    emission seen at the primary hit plus one reflection of light at the primary hit
+//             (light samples at vertex 0 and emission found at vertex 1); this is Full with
+//             maxDepth = min(maxDepth, 1).
+//   Indirect  Full minus Direct: only light that was reflected at least once after the primary hit
+//             (light samples at vertices >= 1, emission at vertices >= 2). This is what VPL methods
+//             estimate.
+//   Clamped   Indirect, with the geometry term of the segment x0 -> x1 leaving the primary hit
+//             clamped as VPL methods clamp G between VPLs and primary hits (MATH.md 1.2 (a)):
+//             everything carried by that segment is scaled by min(1, G_max / G(x0, x1)),
+//             G = cos(n0, x1-x0) cos(n1, x0-x1) / |x1-x0|^2 with shading normals. SMCIR Sec. 5.4
+//             "clamp[s] the geometry term of all light transport path segments that originate from
+//             the primary hits, except for those that directly connect to a light source": light
+//             samples at x0 (direct light) are not clamped, and are not in Indirect anyway.
+//  Whatever the mode, every vertex draws the same random numbers, so with the same seed and no
+//  Russian roulette in play the modes follow identical paths: Full = Direct + Indirect per sample
+//  up to rounding (a test checks this).
+//
+//  Determinism: sample s of pixel p uses its own PCG32 stream seeded from hash(seed, p, s); pixels
+//  sum their samples in sample order. The image is bit-identical for a given seed and sample count
+//  whatever the thread count and scheduling. With a time budget, the sample count reached depends
+//  on the machine (ReferenceResult::spp reports it).
+//
+// References
+// ----------
+//  M. Pharr, W. Jakob, G. Humphreys: Physically Based Rendering, 4th ed., 2023 (PathIntegrator,
+//    Russian roulette, power heuristic; the furnace test).
+//  E. Veach: Robust Monte Carlo Methods for Light Transport Simulation, 1997, ch. 9 (MIS).
+//  E. Heitz: Sampling the GGX Distribution of Visible Normals, JCGT 7(4), 2018.
+//  T. Duff et al.: Building an Orthonormal Basis, Revisited, JCGT 6(1), 2017.
+//  M. O'Neill: PCG: A Family of Simple Fast Space-Efficient Statistically Good Algorithms for
+//    Random Number Generation, 2014.
+//  SMCIR (papers/000): Sec. 5.4 and Fig. 8, path tracing with simulated clamping.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "../glsl/shared/brdf.h"
+#include "image_io.h"
+#include "ray_scene.h"
+#include "scene.h"
+
+namespace vplgi {
+
+class ParamVisitor;
+
+struct PathTracerParams {
+    enum class Mode { Full = 0, Direct = 1, Indirect = 2, Clamped = 3 };
+
+    int spp = 64;                  // samples per pixel [1, 2^24]
+    int maxDepth = 8;              // most reflections a light path may undergo [0, 1024] (see header)
+    int rrStartDepth = 3;          // first vertex reached only through Russian roulette [1, 1025]
+    Mode mode = Mode::Full;        // which part of the light transport to render
+    float clampGeometry = 10.0f;   // G_max [1/m^2] of the Clamped mode [0, 1e9]
+    std::uint32_t seed = 1;        // random stream seed: the same seed gives the same image
+    double timeBudgetSeconds = 0;  // stop after the pass that crosses this [s]; 0 = no budget
+    bool progress = false;         // print a line per pass to stderr
+
+    // Keys "reference.spp", "reference.maxDepth", "reference.rrStartDepth", "reference.mode"
+    // (0 full, 1 direct, 2 indirect, 3 clamped), "reference.clampGeometry", "reference.seed",
+    // "reference.timeBudget", "reference.progress".
+    void visitParams(ParamVisitor& visitor);
+};
+
+struct ReferenceResult {
+    ImageRGBA32F image;  // radiance [W/(m^2 sr)], linear RGB, rows top to bottom, alpha 1
+    int spp = 0;         // samples per pixel actually taken (< requested when the budget ran out)
+    double seconds = 0;  // wall-clock time of the render [s]
+};
+
+// Called on the calling thread between passes with the fraction of samples done, in (0, 1].
+using ProgressCallback = std::function<void(double fraction)>;
+
+// Renders `camera`'s view of `scene` (which `rays` was built from) at width x height pixels.
+// Throws Error for bad sizes or parameters.
+ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const Camera& camera, int width,
+                                int height, const PathTracerParams& params, ProgressCallback progress = {});
+
+// --- BRDF sampling of the shared material (glsl/shared/brdf.h), exposed for tests ---------------
+
+struct BRDFSample {
+    glm::vec3 wi{0.0f};     // sampled direction, unit, away from the surface
+    glm::vec3 weight{0.0f}; // f_r(wo, wi) cos(n, wi) / pdf
+    float pdf = 0.0f;       // solid-angle density of wi [1/sr] (the whole mixture's)
+};
+
+// Draws wi for unit `wo` (away from the surface) about the unit shading normal `n` from three
+// uniform numbers in [0,1). Empty when the draw lands below the shading horizon, wo is below it, or
+// the material reflects nothing; the density of the non-empty draws is still pdfBRDF.
+std::optional<BRDFSample> sampleBRDF(const shared::SurfaceMaterial& material, const glm::vec3& n, const glm::vec3& wo,
+                                     const glm::vec3& u);
+// Solid-angle density [1/sr] with which sampleBRDF draws wi; 0 below either horizon.
+float pdfBRDF(const shared::SurfaceMaterial& material, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi);
+
+} // namespace vplgi
