@@ -10,5 +10,8 @@ namespace vplgi {
 int runRender(const std::vector<std::string>& args);
 int runView(const std::vector<std::string>& args);
 int runScenes(const std::vector<std::string>& args);
+int runReference(const std::vector<std::string>& args);
+int runCompare(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);
 
 } // namespace vplgi

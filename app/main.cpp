@@ -19,6 +19,9 @@ const char* kUsage =
     "commands:\n"
     "  render   render a scene headless (EGL) to a PNG (tone-mapped) or EXR (linear radiance)\n"
     "  view     open a window with camera controls (needs a display)\n"
+    "  reference  path-trace a ground-truth EXR (Embree; full, direct, indirect or clamped)\n"
+    "  compare  render techniques and references, write an HTML report with metrics and plots\n"
+    "  bench    per-pass timings of a technique (and ratios against another)\n"
     "  scenes   list the built-in scenes and techniques\n";
 
 } // namespace
@@ -36,7 +39,11 @@ int main(int argc, char** argv)
         if (command == "render") return vplgi::runRender(args);
         if (command == "view") return vplgi::runView(args);
         if (command == "scenes") return vplgi::runScenes(args);
-        throw vplgi::Error("unknown command \"" + command + "\" (commands: render, view, scenes; see vplgi --help)");
+        if (command == "reference") return vplgi::runReference(args);
+        if (command == "compare") return vplgi::runCompare(args);
+        if (command == "bench") return vplgi::runBench(args);
+        throw vplgi::Error("unknown command \"" + command +
+                           "\" (commands: render, view, reference, compare, bench, scenes; see vplgi --help)");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vplgi: error: %s\n", e.what());
         return 1;

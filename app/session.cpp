@@ -37,7 +37,8 @@ Session::Session(const SessionOptions& options) : mDescription(loadSceneSpec(opt
     settings.insert(settings.end(), options.settings.begin(), options.settings.end());
     ParamSetter setter(settings);
     visitAll(setter);
-    setter.finish();
+    if (options.rejectUnknownSettings) setter.finish();
+    mUsedKeys = setter.usedKeys();
 
     Scene& scene = mDescription.scene;
     if (scene.cameras.empty()) scene.cameras.push_back(makeDefaultCamera(scene.worldBounds()));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +20,9 @@ struct SessionOptions {
     std::string technique;  // empty: the scene file's, else "direct"
     std::string camera;     // empty: the scene's first camera
     std::vector<std::pair<std::string, std::string>> settings; // --set, applied after the scene file's
+    // When false, settings no field of this session knows are left for the caller to check (compare
+    // applies one --set list to several techniques); see Session::usedKeys().
+    bool rejectUnknownSettings = true;
 };
 
 class OptionParser;
@@ -37,12 +41,14 @@ public:
     const std::string& techniqueName() const { return mTechniqueName; }
     // Applies every animation of the scene at `time`; returns true when a light moved.
     bool applyAnimations(float time);
+    const std::set<std::string>& usedKeys() const { return mUsedKeys; }
     // "key = value  # doc" lines of every parameter in effect.
     std::string configuration();
 
 private:
     void visitAll(ParamVisitor& visitor);
     SceneDescription mDescription;
+    std::set<std::string> mUsedKeys;
     std::string mTechniqueName;
     std::string mCameraName;
     Camera mCamera;

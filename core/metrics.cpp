@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../glsl/shared/tonemap.h"
 #include "error.h"
 
 namespace vplgi {
@@ -54,6 +55,22 @@ ImageErrors compareImages(const ImageRGBA32F& method, const ImageRGBA32F& refere
     e.relativeMSE = sumRel / (3.0 * pixels);
     e.meanRelativeLuminance = sumYr > 0.0 ? sumYm / sumYr - 1.0 : 0.0;
     return e;
+}
+
+ImageRGBA8 toneMapImage(const ImageRGBA32F& radiance, double exposure)
+{
+    ImageRGBA8 out;
+    out.width = radiance.width;
+    out.height = radiance.height;
+    out.pixels.resize(static_cast<std::size_t>(out.width) * out.height * 4);
+    for (std::size_t p = 0; p < static_cast<std::size_t>(out.width) * out.height; ++p) {
+        const float* c = &radiance.pixels[p * 4];
+        glm::vec3 mapped = shared::toneMapReinhard(glm::vec3(c[0], c[1], c[2]), static_cast<float>(exposure));
+        for (int k = 0; k < 3; ++k)
+            out.pixels[p * 4 + k] = static_cast<std::uint8_t>(std::lround(255.0f * shared::encodeSRGB(mapped[k])));
+        out.pixels[p * 4 + 3] = 255;
+    }
+    return out;
 }
 
 ImageRGBA8 errorHeatMap(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure, double maxError)

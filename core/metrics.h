@@ -25,6 +25,9 @@ struct ImageErrors {
 // Throws Error when the sizes differ.
 ImageErrors compareImages(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure);
 
+// The display transform of the GPU tone-map pass (glsl/shared/tonemap.h) on the CPU: sRGB bytes.
+ImageRGBA8 toneMapImage(const ImageRGBA32F& radiance, double exposure);
+
 // Per-pixel |T(Y_method) - T(Y_ref)| as a heat map (0 black -> 1 white through purple/orange),
 // scaled so that `maxError` maps to the top of the colour ramp.
 ImageRGBA8 errorHeatMap(const ImageRGBA32F& method, const ImageRGBA32F& reference, double exposure, double maxError);

@@ -31,6 +31,8 @@ public:
     void field(const std::string& key, bool& value, const char* doc) override;
     void field(const std::string& key, std::uint32_t& value, const char* doc) override;
     void finish() const;
+    // Keys that matched a visited field (for callers that apply one setting list to several owners).
+    const std::set<std::string>& usedKeys() const { return mUsed; }
 
 private:
     const std::string* find(const std::string& key);

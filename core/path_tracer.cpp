@@ -34,7 +34,8 @@ void PathTracerParams::visitParams(ParamVisitor& v)
     v.field("reference.seed", seed, "random stream seed (same seed, same image)");
     // The visitor knows floats; write back only a changed value so a double budget keeps its bits.
     float budget = static_cast<float>(timeBudgetSeconds);
-    v.field("reference.timeBudgetSeconds", budget, 0.0f, 1e7f, "wall-clock budget, checked between passes [s]; 0 = none");
+    v.field("reference.timeBudgetSeconds", budget, 0.0f, 1e7f,
+            "wall-clock budget, checked between passes [s]; 0 = none");
     if (budget != static_cast<float>(timeBudgetSeconds)) timeBudgetSeconds = budget;
     v.field("reference.progress", progress, "print one line per pass to stderr");
 }
@@ -269,20 +270,26 @@ private:
     bool countsEmission(int depth) const
     {
         switch (mParams.mode) {
-        case Mode::Full: return true;
-        case Mode::Direct: return depth <= 1;
+        case Mode::Full:
+            return true;
+        case Mode::Direct:
+            return depth <= 1;
         case Mode::Indirect:
-        case Mode::Clamped: return depth >= 2;
+        case Mode::Clamped:
+            return depth >= 2;
         }
         return false;
     }
     bool countsLightSamples(int depth) const
     {
         switch (mParams.mode) {
-        case Mode::Full: return true;
-        case Mode::Direct: return depth == 0;
+        case Mode::Full:
+            return true;
+        case Mode::Direct:
+            return depth == 0;
         case Mode::Indirect:
-        case Mode::Clamped: return depth >= 1;
+        case Mode::Clamped:
+            return depth >= 1;
         }
         return false;
     }
@@ -420,7 +427,8 @@ glm::vec3 Integrator::radiance(Ray ray, Pcg32& rng) const
     float previousCosine = 0.0f; // cosine at the previous vertex of that direction
     for (int depth = 0;; ++depth) {
         float u[kNumbersPerVertex];
-        for (float& number : u) number = rng.uniform();
+        for (float& number : u)
+            number = rng.uniform();
 
         const Hit hit = mRays.intersect(ray);
         if (!hit.valid()) break; // no environment light
@@ -538,6 +546,23 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
     const std::size_t pixelCount = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     std::vector<double> sums(3 * pixelCount, 0.0);
 
+    // Samples first .. first+count-1 of pixel (x, y), added to its sum in sample order.
+    auto addSamples = [&](int x, int y, int first, int count) {
+        const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+        glm::dvec3 sum(sums[3 * pixel], sums[3 * pixel + 1], sums[3 * pixel + 2]);
+        for (int s = first; s < first + count; ++s) {
+            Pcg32 rng = sampleStream(params.seed, static_cast<std::uint32_t>(pixel), static_cast<std::uint32_t>(s));
+            const float jitterX = rng.uniform();
+            const float jitterY = rng.uniform();
+            const glm::vec3 L = integrator.radiance(cameraRays.at(x + jitterX, y + jitterY), rng);
+            // A non-finite sample (a numerical accident) counts as black, deterministically.
+            if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += glm::dvec3(L);
+        }
+        sums[3 * pixel] = sum.x;
+        sums[3 * pixel + 1] = sum.y;
+        sums[3 * pixel + 2] = sum.z;
+    };
+
     // Passes of 1, 2, 4, ... samples; with a budget, a pass is shortened to what the measured time
     // per sample says still fits, and no pass starts once the budget is spent.
     int done = 0;
@@ -552,30 +577,15 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
             count = std::max(1, static_cast<int>(std::min<double>(count, fits)));
         }
         const int first = done;
-        tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 4, 0, width, 4), [&](const tbb::blocked_range2d<int>& r) {
-            for (int y = r.rows().begin(); y < r.rows().end(); ++y) {
-                for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                    const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
-                    glm::dvec3 sum(sums[3 * pixel], sums[3 * pixel + 1], sums[3 * pixel + 2]);
-                    for (int s = first; s < first + count; ++s) {
-                        Pcg32 rng = sampleStream(params.seed, static_cast<std::uint32_t>(pixel),
-                                                 static_cast<std::uint32_t>(s));
-                        const float jitterX = rng.uniform();
-                        const float jitterY = rng.uniform();
-                        const glm::vec3 L = integrator.radiance(cameraRays.at(x + jitterX, y + jitterY), rng);
-                        // A non-finite sample (a numerical accident) counts as black, deterministically.
-                        if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += glm::dvec3(L);
-                    }
-                    sums[3 * pixel] = sum.x;
-                    sums[3 * pixel + 1] = sum.y;
-                    sums[3 * pixel + 2] = sum.z;
-                }
-            }
-        });
+        tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 4, 0, width, 4),
+                          [&](const tbb::blocked_range2d<int>& tile) {
+                              for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
+                                  for (int x = tile.cols().begin(); x < tile.cols().end(); ++x)
+                                      addSamples(x, y, first, count);
+                          });
         done += count;
         passSize = std::min(2 * passSize, 1 << 24);
-        if (params.progress)
-            std::fprintf(stderr, "reference: %d/%d spp, %.2f s\n", done, params.spp, elapsed());
+        if (params.progress) std::fprintf(stderr, "reference: %d/%d spp, %.2f s\n", done, params.spp, elapsed());
         if (progress) progress(static_cast<double>(done) / params.spp);
     }
 
@@ -585,7 +595,8 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
     result.image.height = height;
     result.image.pixels.resize(4 * pixelCount);
     for (std::size_t i = 0; i < pixelCount; ++i) {
-        for (int c = 0; c < 3; ++c) result.image.pixels[4 * i + c] = static_cast<float>(sums[3 * i + c] / done);
+        for (int c = 0; c < 3; ++c)
+            result.image.pixels[4 * i + c] = static_cast<float>(sums[3 * i + c] / done);
         result.image.pixels[4 * i + 3] = 1.0f;
     }
     result.seconds = elapsed();

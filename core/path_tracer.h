@@ -109,25 +109,25 @@ class ParamVisitor;
 struct PathTracerParams {
     enum class Mode { Full = 0, Direct = 1, Indirect = 2, Clamped = 3 };
 
-    int spp = 64;                  // samples per pixel [1, 2^24]
-    int maxDepth = 8;              // most reflections a light path may undergo [0, 1024] (see header)
-    int rrStartDepth = 3;          // first vertex reached only through Russian roulette [1, 1025]
-    Mode mode = Mode::Full;        // which part of the light transport to render
-    float clampGeometry = 10.0f;   // G_max [1/m^2] of the Clamped mode [0, 1e9]
-    std::uint32_t seed = 1;        // random stream seed: the same seed gives the same image
-    double timeBudgetSeconds = 0;  // stop after the pass that crosses this [s]; 0 = no budget
-    bool progress = false;         // print a line per pass to stderr
+    int spp = 64;                 // samples per pixel [1, 2^24]
+    int maxDepth = 8;             // most reflections a light path may undergo [0, 1024] (see header)
+    int rrStartDepth = 3;         // first vertex reached only through Russian roulette [1, 1025]
+    Mode mode = Mode::Full;       // which part of the light transport to render
+    float clampGeometry = 10.0f;  // G_max [1/m^2] of the Clamped mode [0, 1e9]
+    std::uint32_t seed = 1;       // random stream seed: the same seed gives the same image
+    double timeBudgetSeconds = 0; // wall-clock budget [s], 0 = none: no pass starts after it, and a
+                                  // pass is shortened to what the measured time per sample says fits
+    bool progress = false;        // print a line per pass to stderr
 
-    // Keys "reference.spp", "reference.maxDepth", "reference.rrStartDepth", "reference.mode"
-    // (0 full, 1 direct, 2 indirect, 3 clamped), "reference.clampGeometry", "reference.seed",
-    // "reference.timeBudget", "reference.progress".
+    // Keys "reference.<field>": spp, maxDepth, rrStartDepth, mode (0 full, 1 direct, 2 indirect,
+    // 3 clamped), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress.
     void visitParams(ParamVisitor& visitor);
 };
 
 struct ReferenceResult {
-    ImageRGBA32F image;  // radiance [W/(m^2 sr)], linear RGB, rows top to bottom, alpha 1
-    int spp = 0;         // samples per pixel actually taken (< requested when the budget ran out)
-    double seconds = 0;  // wall-clock time of the render [s]
+    ImageRGBA32F image; // radiance [W/(m^2 sr)], linear RGB, rows top to bottom, alpha 1
+    int spp = 0;        // samples per pixel actually taken (< requested when the budget ran out)
+    double seconds = 0; // wall-clock time of the render [s]
 };
 
 // Called on the calling thread between passes with the fraction of samples done, in (0, 1].
@@ -135,8 +135,8 @@ using ProgressCallback = std::function<void(double fraction)>;
 
 // Renders `camera`'s view of `scene` (which `rays` was built from) at width x height pixels.
 // Throws Error for bad sizes or parameters.
-ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const Camera& camera, int width,
-                                int height, const PathTracerParams& params, ProgressCallback progress = {});
+ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
+                                const PathTracerParams& params, ProgressCallback progress = {});
 
 // --- BRDF sampling of the shared material (glsl/shared/brdf.h), exposed for tests ---------------
 

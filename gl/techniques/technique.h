@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "../api/shader_loader.h"
@@ -51,6 +52,8 @@ public:
     virtual void render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target) = 0;
     virtual void visitParams(ParamVisitor& visitor) = 0;
     virtual void reloadShaders(const gl::ShaderLoader&) {}
+    // Statistics of the last frame for `vplgi bench` (e.g. "rays", "vpls", "vplsMoved").
+    virtual std::vector<std::pair<std::string, double>> frameStats() const { return {}; }
 };
 
 // The explicit list of techniques; an unknown name throws Error listing the known ones.

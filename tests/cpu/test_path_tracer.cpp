@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <thread>
 #include <vector>
 
@@ -29,7 +30,8 @@ double meanChannel(const ImageRGBA32F& image, int channel)
 {
     double sum = 0.0;
     for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) sum += image.at(x, y)[channel];
+        for (int x = 0; x < image.width; ++x)
+            sum += image.at(x, y)[channel];
     return sum / (static_cast<double>(image.width) * image.height);
 }
 
@@ -137,8 +139,9 @@ glm::dvec3 quadratureIrradiance(const Scene& scene, const RayScene& rays, const 
             };
             for (int i = 0; i < m; ++i) {
                 for (int j = 0; i + j < m; ++j) {
-                    add((i + 1.0f / 3.0f) / m, (j + 1.0f / 3.0f) / m); // upward sub-triangle
-                    if (i + j < m - 1) add((i + 2.0f / 3.0f) / m, (j + 2.0f / 3.0f) / m); // downward
+                    // The upward sub-triangle at (i, j), then the downward one beside it.
+                    add((i + 1.0f / 3.0f) / m, (j + 1.0f / 3.0f) / m);
+                    if (i + j < m - 1) add((i + 2.0f / 3.0f) / m, (j + 2.0f / 3.0f) / m);
                 }
             }
         }
@@ -178,7 +181,7 @@ TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match 
         const double direct = meanGrey(render(scene, rays, camera, 16, params));
         CHECK(direct == Approx(l1).epsilon(0.01));
 
-        params.spp = 512;
+        params.spp = 1024; // standard error about 0.12 % (full) and 0.15 % (indirect) at rho = 0.8
         params.mode = Mode::Full;
         const double full = meanGrey(render(scene, rays, camera, 16, params));
         CHECK(full == Approx(all).epsilon(0.01));
@@ -196,7 +199,7 @@ TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match 
         // Inside a sphere G = 1/(4R^2) for every pair of wall points, so G_max = 0.4/(4R^2) scales every
         // path by exactly 0.4 (MATH.md 1.2).
         params.maxDepth = 100;
-        params.spp = 1024; // roulette on the clamped throughput is noisier
+        params.spp = 4096; // roulette on the clamped throughput is noisier: standard error about 0.15 %
         params.mode = Mode::Clamped;
         params.clampGeometry = 0.4f / (4.0f * furnace.radius * furnace.radius);
         const double clamped = meanGrey(render(scene, rays, camera, 16, params));
@@ -214,7 +217,7 @@ TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) dir
         const RayScene rays(scene);
         PathTracerParams params;
         params.maxDepth = 60;
-        params.spp = 1024; // the indirect part's standard error is then about 0.35 %
+        params.spp = 4096; // the indirect part's standard error is then about 0.17 %
         params.mode = Mode::Full;
         const ImageRGBA32F full = render(scene, rays, scene.cameras[0], 16, params);
         params.mode = Mode::Direct;
@@ -235,7 +238,7 @@ TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) dir
         const RayScene rays(scene);
         PathTracerParams params;
         params.maxDepth = 150; // 0.8^150 ~ 3e-15
-        params.spp = 256;
+        params.spp = 1024;
         const ImageRGBA32F full = render(scene, rays, scene.cameras[0], 16, params);
         for (int c = 0; c < 3; ++c) {
             INFO("channel " << c);
@@ -301,7 +304,7 @@ TEST_CASE("modes split the light transport: full = direct + indirect, clamped <=
         indirectSum += indirect.pixels[i];
     }
     CHECK(worst < 1e-4);
-    CHECK(indirectSum > 0.0);              // the split is not trivial: both parts carry light
+    CHECK(indirectSum > 0.0); // the split is not trivial: both parts carry light
     CHECK(meanGrey(direct) > meanGrey(indirect));
 
     // Clamped with a G_max nothing reaches is Indirect bit for bit; a small one only removes light.
@@ -319,6 +322,67 @@ TEST_CASE("modes split the light transport: full = direct + indirect, clamped <=
         if (clamped.pixels[i] > unclamped.pixels[i] * (1.0f + 1e-5f) + 1e-7f) ++brighter;
     CHECK(brighter == 0);
     CHECK(meanGrey(clamped) < 0.9 * meanGrey(unclamped));
+}
+
+TEST_CASE("camera rays follow the rasterizer's convention; emitters shine from their front side", "[reference]")
+{
+    // An emissive quad on z = -2 filling the top-left quadrant of a camera at the origin looking
+    // down -z; its counter-clockwise side faces the camera. The quadrant's edges fall on pixel edges.
+    Scene scene;
+    Material material;
+    material.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    material.specular = 0.0f;
+    material.emission = {2.0f, 3.0f, 4.0f};
+    scene.materials.push_back(material);
+    Mesh mesh;
+    for (glm::vec3 p : {glm::vec3(-10, 0, -2), glm::vec3(0, 0, -2), glm::vec3(0, 10, -2), glm::vec3(-10, 10, -2)}) {
+        Vertex v;
+        v.position = p;
+        v.normal = {0.0f, 0.0f, 1.0f};
+        mesh.vertices.push_back(v);
+    }
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    scene.meshes.push_back(mesh);
+    scene.instances.push_back(Instance{0, glm::mat4(1.0f)});
+    Camera front;
+    front.position = {0.0f, 0.0f, 0.0f};
+    front.target = {0.0f, 0.0f, -1.0f};
+    front.fovY = 1.0f;
+    Camera back = front; // behind the quad, looking at its back; image x runs along world -x
+    back.position = {0.0f, 0.0f, -4.0f};
+    back.target = {0.0f, 0.0f, 0.0f};
+
+    PathTracerParams params;
+    params.maxDepth = 0; // emission only
+    params.spp = 8;
+    // Per pixel: 1 for exactly the emission, 0 for exactly black, -1 for anything else.
+    auto classify = [&](const Scene& s, const Camera& camera) {
+        const RayScene rays(s);
+        const ImageRGBA32F image = render(s, rays, camera, 8, params);
+        std::vector<int> classes;
+        for (int y = 0; y < 8; ++y) {
+            for (int x = 0; x < 8; ++x) {
+                const float* p = image.at(x, y);
+                if (p[0] == 2.0f && p[1] == 3.0f && p[2] == 4.0f)
+                    classes.push_back(1);
+                else
+                    classes.push_back(p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f ? 0 : -1);
+            }
+        }
+        return classes;
+    };
+    auto quadrant = [](bool left) {
+        std::vector<int> classes;
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x)
+                classes.push_back(y < 4 && (x < 4) == left ? 1 : 0);
+        return classes;
+    };
+    CHECK(classify(scene, front) == quadrant(true)); // top rows first, +x to the right
+    // Single-sided: nothing from behind (the rasterizer culls the back face); double-sided: lit.
+    CHECK(classify(scene, back) == std::vector<int>(64, 0));
+    scene.materials[0].doubleSided = true;
+    CHECK(classify(scene, back) == quadrant(false));
 }
 
 TEST_CASE("reference renders are deterministic across runs and thread counts", "[reference]")
@@ -358,7 +422,7 @@ TEST_CASE("time budget stops between passes; progress is reported on the calling
     ReferenceResult some = renderReference(scene, rays, scene.cameras[0], 16, 16, params);
     CHECK(some.spp >= 1);
     CHECK(some.spp < params.spp);
-    CHECK(some.seconds < 3.0);
+    CHECK(some.seconds < 5.0); // loose: the machine may be busy
 
     params.timeBudgetSeconds = 0.0;
     params.spp = 10;
@@ -413,14 +477,11 @@ TEST_CASE("GGX mixture sampling has an exact pdf: E[f cos / pdf] is the brute-fo
                     }
                 }
 
-                const int samples = 200000;
+                const int samples = 400000;
                 glm::dvec3 estimate(0.0);
                 int accepted = 0;
-                std::uint32_t state = 12345u;
-                auto next = [&state] { // a small LCG, independent of the renderer's generator
-                    state = state * 1664525u + 1013904223u;
-                    return static_cast<float>(state >> 8) * 0x1p-24f;
-                };
+                std::mt19937 engine(12345u); // independent of the renderer's generator
+                auto next = [&engine] { return static_cast<float>(engine() >> 8) * 0x1p-24f; };
                 for (int k = 0; k < samples; ++k) {
                     const float u0 = next(), u1 = next(), u2 = next();
                     if (std::optional<BRDFSample> sample = sampleBRDF(material, n, wo, glm::vec3(u0, u1, u2))) {
@@ -429,7 +490,8 @@ TEST_CASE("GGX mixture sampling has an exact pdf: E[f cos / pdf] is the brute-fo
                     }
                 }
                 estimate /= samples;
-                for (int c = 0; c < 3; ++c) CHECK(estimate[c] == Approx(albedo[c]).epsilon(0.01));
+                for (int c = 0; c < 3; ++c)
+                    CHECK(estimate[c] == Approx(albedo[c]).epsilon(0.01));
                 // Draws below the horizon are rejected: the accepted fraction is the pdf's integral.
                 CHECK(static_cast<double>(accepted) / samples == Approx(pdfIntegral).epsilon(0.01));
             }
@@ -441,10 +503,10 @@ TEST_CASE("reference parameters: one field list, checked ranges", "[reference][p
 {
     PathTracerParams params;
     ParamSetter setter(Settings{{"reference.spp", "16"},
-                        {"reference.mode", "3"},
-                        {"reference.clampGeometry", "2.5"},
-                        {"reference.timeBudgetSeconds", "0.5"},
-                        {"reference.seed", "9"}});
+                                {"reference.mode", "3"},
+                                {"reference.clampGeometry", "2.5"},
+                                {"reference.timeBudgetSeconds", "0.5"},
+                                {"reference.seed", "9"}});
     params.visitParams(setter);
     setter.finish();
     CHECK(params.spp == 16);

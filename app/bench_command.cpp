@@ -1,0 +1,179 @@
+// `vplgi bench`: per-pass timings of a technique over frames (median, min, max), with CPU stage
+// statistics the technique reports, as a markdown table and JSON; `--against` runs a second
+// technique in the same process and prints ratios (this machine is noisy: compare within one run).
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "cli.h"
+#include "commands.h"
+#include "core/error.h"
+#include "core/params.h"
+#include "gl/api/context.h"
+#include "report.h"
+#include "session.h"
+
+namespace vplgi {
+
+namespace {
+
+struct PassStats {
+    std::vector<double> samples; // [ms] per frame in which the pass ran
+    double median() const
+    {
+        std::vector<double> s = samples;
+        std::sort(s.begin(), s.end());
+        return s.empty() ? 0.0 : (s.size() % 2 ? s[s.size() / 2] : 0.5 * (s[s.size() / 2 - 1] + s[s.size() / 2]));
+    }
+    double min() const { return samples.empty() ? 0.0 : *std::min_element(samples.begin(), samples.end()); }
+    double max() const { return samples.empty() ? 0.0 : *std::max_element(samples.begin(), samples.end()); }
+};
+
+struct BenchResult {
+    std::string technique;
+    std::vector<std::string> order;        // passes in first-seen order
+    std::map<std::string, PassStats> passes;
+    PassStats total;
+    std::map<std::string, PassStats> stats; // technique statistics per frame (rays, VPLs, ...)
+};
+
+BenchResult benchOne(Session& session, int width, int height, int warmup, int frames, float fps)
+{
+    BenchResult r;
+    r.technique = session.techniqueName();
+    for (int frame = 0; frame < warmup + frames; ++frame) {
+        const float time = static_cast<float>(frame) / fps;
+        session.applyAnimations(time);
+        session.renderer().renderFrame(session.camera(), width, height, time);
+        if (frame < warmup) continue;
+        for (const gl::PassTime& t : session.renderer().timer().times()) {
+            if (!r.passes.count(t.name)) r.order.push_back(t.name);
+            r.passes[t.name].samples.push_back(t.milliseconds);
+        }
+        r.total.samples.push_back(session.renderer().timer().total());
+        for (const auto& [name, value] : session.renderer().technique().frameStats())
+            r.stats[name].samples.push_back(value);
+    }
+    return r;
+}
+
+std::string markdown(const BenchResult& r, int frames)
+{
+    std::ostringstream s;
+    s << "| " << r.technique << " (" << frames << " frames) | median ms | min ms | max ms | frames run |\n|---|---|---|---|---|\n";
+    for (const std::string& name : r.order) {
+        const PassStats& p = r.passes.at(name);
+        s << "| " << name << " | " << formatNumber(p.median()) << " | " << formatNumber(p.min()) << " | "
+          << formatNumber(p.max()) << " | " << p.samples.size() << " |\n";
+    }
+    s << "| **total** | " << formatNumber(r.total.median()) << " | " << formatNumber(r.total.min()) << " | "
+      << formatNumber(r.total.max()) << " | " << r.total.samples.size() << " |\n";
+    for (const auto& [name, p] : r.stats)
+        s << "| " << name << " (stat) | " << formatNumber(p.median()) << " | " << formatNumber(p.min()) << " | "
+          << formatNumber(p.max()) << " | " << p.samples.size() << " |\n";
+    return s.str();
+}
+
+std::string jsonOf(const BenchResult& r)
+{
+    std::ostringstream s;
+    s << "{\"technique\": \"" << r.technique << "\", \"passes\": [";
+    for (std::size_t i = 0; i < r.order.size(); ++i) {
+        const PassStats& p = r.passes.at(r.order[i]);
+        s << (i ? ", " : "") << "{\"name\": \"" << r.order[i] << "\", \"medianMs\": " << p.median()
+          << ", \"minMs\": " << p.min() << ", \"maxMs\": " << p.max() << ", \"frames\": " << p.samples.size() << "}";
+    }
+    s << "], \"totalMedianMs\": " << r.total.median() << ", \"stats\": {";
+    bool first = true;
+    for (const auto& [name, p] : r.stats) {
+        s << (first ? "" : ", ") << "\"" << name << "\": " << p.median();
+        first = false;
+    }
+    s << "}}";
+    return s.str();
+}
+
+} // namespace
+
+int runBench(const std::vector<std::string>& args)
+{
+    OptionParser parser("vplgi bench",
+                        "Times every pass of a technique over frames (glFinish + wall clock on llvmpipe, timer\n"
+                        "queries on GPUs) and prints median/min/max per pass as markdown and JSON. --against runs\n"
+                        "a second technique in the same process and prints per-pass ratios.");
+    parser.value("scene", "S", "built-in scene, scene file (.json) or .gltf/.glb");
+    parser.value("technique", "T", "technique to time", "direct");
+    parser.value("against", "T2", "second technique, timed in the same run; ratios T2 / T");
+    parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
+    parser.value("frames", "N", "timed frames", "10");
+    parser.value("warmup", "N", "untimed frames first (the first frame also builds shadow maps)", "1");
+    parser.value("fps", "F", "animation frames per second (the scene file's animations run)", "30");
+    parser.value("width", "W", "image width", "640");
+    parser.value("height", "H", "image height", "360");
+    parser.value("json", "FILE", "also write the JSON here");
+    parser.value("set", "KEY=VALUE", "set a parameter", "", true);
+    if (!parser.parse(args)) return 0;
+    require(parser.has("scene"), "--scene is required (e.g. --scene maze)");
+    const int frames = parser.getInt("frames", 1, 100000);
+    const int warmup = parser.getInt("warmup", 0, 100000);
+    const float fps = parser.getFloat("fps", 0.001f, 10000.0f);
+    const int width = parser.getInt("width", 1, 16384);
+    const int height = parser.getInt("height", 1, 16384);
+    Settings settings;
+    for (const std::string& s : parser.getAll("set")) settings.push_back(parseSetting(s));
+
+    std::vector<std::string> names = {parser.get("technique")};
+    if (parser.has("against")) names.push_back(parser.get("against"));
+    std::unique_ptr<gl::Context> context;
+    std::vector<std::unique_ptr<Session>> sessions;
+    std::set<std::string> used;
+    for (const std::string& name : names) {
+        SessionOptions options;
+        options.sceneSpec = parser.get("scene");
+        options.technique = name;
+        options.camera = parser.get("camera");
+        options.settings = settings;
+        options.rejectUnknownSettings = false;
+        sessions.push_back(std::make_unique<Session>(options));
+        used.insert(sessions.back()->usedKeys().begin(), sessions.back()->usedKeys().end());
+    }
+    for (const auto& setting : settings)
+        require(used.count(setting.first) > 0, "unknown parameter \"" + setting.first + "\"");
+    context = gl::createHeadlessContext();
+    std::printf("scene %s, %dx%d, %s\n\n", sessions.front()->scene().source.c_str(), width, height,
+                context->description().c_str());
+    std::vector<BenchResult> results;
+    for (auto& session : sessions) {
+        session->createRenderer();
+        results.push_back(benchOne(*session, width, height, warmup, frames, fps));
+        std::printf("%s\n", markdown(results.back(), frames).c_str());
+    }
+    if (results.size() == 2) {
+        const BenchResult &a = results[0], &b = results[1];
+        std::printf("| pass | %s ms | %s ms | ratio %s / %s |\n|---|---|---|---|\n", a.technique.c_str(), b.technique.c_str(),
+                    b.technique.c_str(), a.technique.c_str());
+        std::vector<std::string> order = a.order;
+        for (const std::string& n : b.order)
+            if (std::find(order.begin(), order.end(), n) == order.end()) order.push_back(n);
+        for (const std::string& n : order) {
+            double ma = a.passes.count(n) ? a.passes.at(n).median() : 0.0;
+            double mb = b.passes.count(n) ? b.passes.at(n).median() : 0.0;
+            std::printf("| %s | %s | %s | %s |\n", n.c_str(), formatNumber(ma).c_str(), formatNumber(mb).c_str(),
+                        ma > 0.0 ? formatNumber(mb / ma, 3).c_str() : "-");
+        }
+        std::printf("| **total** | %s | %s | %s |\n\n", formatNumber(a.total.median()).c_str(),
+                    formatNumber(b.total.median()).c_str(), formatNumber(b.total.median() / a.total.median(), 3).c_str());
+    }
+    std::string json = "{\"scene\": \"" + sessions.front()->scene().source + "\", \"width\": " + std::to_string(width) +
+                       ", \"height\": " + std::to_string(height) + ", \"frames\": " + std::to_string(frames) +
+                       ", \"results\": [";
+    for (std::size_t i = 0; i < results.size(); ++i) json += (i ? ", " : "") + jsonOf(results[i]);
+    json += "]}\n";
+    std::printf("%s", json.c_str());
+    if (parser.has("json")) writeTextFile(parser.get("json"), json);
+    return 0;
+}
+
+} // namespace vplgi

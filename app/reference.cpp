@@ -1,0 +1,84 @@
+#include "reference.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/content_hash.h"
+#include "core/error.h"
+
+namespace vplgi {
+
+std::string defaultReferenceCache()
+{
+    if (const char* env = std::getenv("VPLGI_CACHE_DIR"); env && *env) return env;
+    return "out/reference-cache";
+}
+
+PathTracerParams::Mode parseReferenceMode(const std::string& text)
+{
+    if (text == "full") return PathTracerParams::Mode::Full;
+    if (text == "direct") return PathTracerParams::Mode::Direct;
+    if (text == "indirect") return PathTracerParams::Mode::Indirect;
+    if (text == "clamped") return PathTracerParams::Mode::Clamped;
+    throw Error("--mode \"" + text + "\" must be full, direct, indirect or clamped");
+}
+
+namespace {
+
+std::string cacheKey(const ReferenceRequest& r)
+{
+    Hasher h;
+    h.value(hashSceneContent(r.scene));
+    hashCamera(h, r.camera);
+    h.value(r.width);
+    h.value(r.height);
+    h.value(r.params.mode);
+    h.value(r.params.spp);
+    h.value(r.params.maxDepth);
+    h.value(r.params.rrStartDepth);
+    h.value(r.params.clampGeometry);
+    h.value(r.params.seed);
+    return h.hex();
+}
+
+void printProgress(double fraction)
+{
+    const int width = 40;
+    int filled = static_cast<int>(fraction * width + 0.5);
+    std::fprintf(stderr, "\rreference [%.*s%*s] %3d%%", filled, "########################################",
+                 width - filled, "", static_cast<int>(fraction * 100.0 + 0.5));
+    if (fraction >= 1.0) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+}
+
+} // namespace
+
+CachedReference obtainReference(const ReferenceRequest& request)
+{
+    CachedReference result;
+    if (!request.cacheDirectory.empty()) {
+        result.cachePath = request.cacheDirectory + "/" + cacheKey(request) + ".exr";
+        if (std::filesystem::exists(result.cachePath)) {
+            result.image = readImageLinear(result.cachePath);
+            result.spp = request.params.spp;
+            result.fromCache = true;
+            return result;
+        }
+    }
+    ProgressCallback progress;
+    if (request.showProgress) progress = printProgress;
+    ReferenceResult rendered =
+        renderReference(request.scene, request.rays, request.camera, request.width, request.height, request.params, progress);
+    result.image = std::move(rendered.image);
+    result.spp = rendered.spp;
+    result.seconds = rendered.seconds;
+    // Only complete renders are cached: a time budget makes a partial one depend on the machine.
+    if (!result.cachePath.empty() && rendered.spp == request.params.spp) {
+        std::filesystem::create_directories(request.cacheDirectory);
+        writeImage(result.cachePath, result.image);
+    }
+    return result;
+}
+
+} // namespace vplgi

@@ -1,0 +1,80 @@
+#include "content_hash.h"
+
+#include <cstdio>
+
+namespace vplgi {
+
+void Hasher::bytes(const void* data, std::size_t size)
+{
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+        mState ^= p[i];
+        mState *= 0x100000001b3ull;
+    }
+}
+
+std::string Hasher::hex() const
+{
+    char buffer[17];
+    std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(mState));
+    return buffer;
+}
+
+std::uint64_t hashSceneContent(const Scene& scene)
+{
+    Hasher h;
+    h.value(scene.meshes.size());
+    for (const Mesh& m : scene.meshes) {
+        h.value(m.material);
+        h.value(m.vertices.size());
+        h.bytes(m.vertices.data(), m.vertices.size() * sizeof(Vertex));
+        h.value(m.indices.size());
+        h.bytes(m.indices.data(), m.indices.size() * sizeof(std::uint32_t));
+    }
+    h.value(scene.instances.size());
+    for (const Instance& i : scene.instances) {
+        h.value(i.mesh);
+        h.value(i.worldFromObject);
+    }
+    h.value(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        h.value(m.baseColor);
+        h.value(m.baseColorTexture.image);
+        h.value(m.metallic);
+        h.value(m.roughness);
+        h.value(m.metallicRoughnessTexture.image);
+        h.value(m.specular);
+        h.value(m.emission);
+        h.value(m.emissionTexture.image);
+        h.value(m.normalTexture.image);
+        h.value(m.normalScale);
+        h.value(m.doubleSided);
+    }
+    h.value(scene.images.size());
+    for (const Image& img : scene.images) {
+        h.value(img.width);
+        h.value(img.height);
+        h.bytes(img.rgba.data(), img.rgba.size());
+    }
+    h.value(scene.lights.size());
+    for (const Light& l : scene.lights) {
+        h.value(l.type);
+        h.value(l.position);
+        h.value(l.direction);
+        h.value(l.color);
+        h.value(l.intensity);
+        h.value(l.innerConeAngle);
+        h.value(l.outerConeAngle);
+    }
+    return h.digest();
+}
+
+void hashCamera(Hasher& h, const Camera& c)
+{
+    h.value(c.position);
+    h.value(c.target);
+    h.value(c.up);
+    h.value(c.fovY);
+}
+
+} // namespace vplgi

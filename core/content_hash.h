@@ -1,0 +1,28 @@
+// A 64-bit FNV-1a hash of everything in a scene that changes its images (geometry, transforms,
+// materials, images, lights), used to key cached path-traced references.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scene.h"
+
+namespace vplgi {
+
+class Hasher {
+public:
+    void bytes(const void* data, std::size_t size);
+    template <typename T>
+    void value(const T& v) { bytes(&v, sizeof v); }
+    void text(const std::string& s) { value(s.size()); bytes(s.data(), s.size()); }
+    std::uint64_t digest() const { return mState; }
+    std::string hex() const;
+
+private:
+    std::uint64_t mState = 0xcbf29ce484222325ull;
+};
+
+std::uint64_t hashSceneContent(const Scene& scene);
+void hashCamera(Hasher& hasher, const Camera& camera);
+
+} // namespace vplgi

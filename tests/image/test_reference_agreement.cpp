@@ -1,0 +1,73 @@
+// The GL renderer and the Embree path tracer share scene, camera, light units and BRDF: the
+// `direct` technique must agree with the path tracer's direct-only mode on the Cornell box.
+// (The GPU represents the area light by 64 point samples and uses cube shadow maps; the path
+// tracer integrates the area light and traces shadow rays.)
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/builtin_scenes.h"
+#include "core/metrics.h"
+#include "core/path_tracer.h"
+#include "core/ray_scene.h"
+#include "gl/renderer.h"
+#include "gl_test_context.h"
+
+using namespace vplgi;
+
+TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell", "[image][reference]")
+{
+    test::ensureGLContext();
+    Scene scene = makeBuiltinScene("cornell");
+    const Camera& camera = scene.cameras[0];
+    const int width = 64, height = 64;
+    Renderer renderer(test::shaders(), scene, RendererParams{}, createTechnique("direct"));
+    renderer.renderFrame(camera, width, height);
+    const ImageRGBA32F gpu = renderer.readRadiance();
+
+    RayScene rays(scene);
+    PathTracerParams params;
+    params.mode = PathTracerParams::Mode::Direct;
+    params.spp = 1024;
+    const ImageRGBA32F reference = renderReference(scene, rays, camera, width, height, params).image;
+
+    const double exposure = 4.0; // scenes/cornell.json's display exposure
+    const ImageErrors errors = compareImages(gpu, reference, exposure);
+    // Pixels that see the emitter, or touch one that does, are left out of the radiometric checks:
+    // the rasterizer samples pixel centres, the path tracer averages over the pixel, and at the
+    // edge of a radiance-17 emitter that difference dominates everything else.
+    auto luminance = [](const ImageRGBA32F& image, int x, int y) {
+        const float* c = image.at(x, y);
+        return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    };
+    double sumAbs = 0.0, sumRef = 0.0, sumGpu = 0.0;
+    int used = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            bool nearEmitter = false;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    int nx = std::clamp(x + dx, 0, width - 1), ny = std::clamp(y + dy, 0, height - 1);
+                    nearEmitter = nearEmitter || luminance(gpu, nx, ny) > 1.0 || luminance(reference, nx, ny) > 1.0;
+                }
+            if (nearEmitter) continue;
+            sumAbs += std::abs(luminance(gpu, x, y) - luminance(reference, x, y));
+            sumRef += luminance(reference, x, y);
+            sumGpu += luminance(gpu, x, y);
+            ++used;
+        }
+    const double relativeMeanAbs = sumAbs / sumRef;
+    const double bias = sumGpu / sumRef - 1.0;
+    INFO("tone-mapped mean |E| " << errors.meanAbsToneMapped);
+    INFO("relative mean |dY| " << relativeMeanAbs << " and bias of the mean " << bias << " over " << used << " pixels");
+    if (errors.meanAbsToneMapped > 0.03 || relativeMeanAbs > 0.05 || std::abs(bias) > 0.01) {
+        test::saveTestImage("cornell-direct-gl", gpu);
+        test::saveTestImage("cornell-direct-pathtraced", reference);
+    }
+    CHECK(used > width * height / 2);
+    CHECK(errors.meanAbsToneMapped < 0.03); // the criterion, in SMCIR's tone-mapped metric
+    CHECK(std::abs(bias) < 0.01);           // no systematic difference in light units or BRDF
+    CHECK(relativeMeanAbs < 0.05);          // per pixel: path-tracer noise, shadow-map edges
+
+}
