@@ -38,6 +38,7 @@ void PathTracerParams::visitParams(ParamVisitor& v)
             "wall-clock budget, checked between passes [s]; 0 = none");
     if (budget != static_cast<float>(timeBudgetSeconds)) timeBudgetSeconds = budget;
     v.field("reference.progress", progress, "print one line per pass to stderr");
+    v.field("reference.jitterPixels", jitterPixels, "spread samples over the pixel (false: pixel centres only)");
 }
 
 namespace {
@@ -552,8 +553,11 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
         glm::dvec3 sum(sums[3 * pixel], sums[3 * pixel + 1], sums[3 * pixel + 2]);
         for (int s = first; s < first + count; ++s) {
             Pcg32 rng = sampleStream(params.seed, static_cast<std::uint32_t>(pixel), static_cast<std::uint32_t>(s));
-            const float jitterX = rng.uniform();
-            const float jitterY = rng.uniform();
+            // Both numbers are drawn either way so the paths are the same with and without jitter.
+            const float u = rng.uniform();
+            const float v = rng.uniform();
+            const float jitterX = params.jitterPixels ? u : 0.5f;
+            const float jitterY = params.jitterPixels ? v : 0.5f;
             const glm::vec3 L = integrator.radiance(cameraRays.at(x + jitterX, y + jitterY), rng);
             // A non-finite sample (a numerical accident) counts as black, deterministically.
             if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += glm::dvec3(L);

@@ -118,6 +118,8 @@ struct PathTracerParams {
     double timeBudgetSeconds = 0; // wall-clock budget [s], 0 = none: no pass starts after it, and a
                                   // pass is shortened to what the measured time per sample says fits
     bool progress = false;        // print a line per pass to stderr
+    bool jitterPixels = true;     // false: every sample through the pixel centre, as a rasterizer
+                                  // without MSAA samples (for GPU-vs-reference checks at edges)
 
     // Keys "reference.<field>": spp, maxDepth, rrStartDepth, mode (0 full, 1 direct, 2 indirect,
     // 3 clamped), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress.

@@ -21,7 +21,7 @@ TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell
     test::ensureGLContext();
     Scene scene = makeBuiltinScene("cornell");
     const Camera& camera = scene.cameras[0];
-    const int width = 64, height = 64;
+    const int width = 96, height = 96;
     Renderer renderer(test::shaders(), scene, RendererParams{}, createTechnique("direct"));
     renderer.renderFrame(camera, width, height);
     const ImageRGBA32F gpu = renderer.readRadiance();
@@ -29,14 +29,15 @@ TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell
     RayScene rays(scene);
     PathTracerParams params;
     params.mode = PathTracerParams::Mode::Direct;
-    params.spp = 1024;
+    params.spp = 512;
+    params.jitterPixels = false; // sample pixel centres as the rasterizer does
     const ImageRGBA32F reference = renderReference(scene, rays, camera, width, height, params).image;
 
     const double exposure = 4.0; // scenes/cornell.json's display exposure
     const ImageErrors errors = compareImages(gpu, reference, exposure);
     // Pixels that see the emitter, or touch one that does, are left out of the radiometric checks:
-    // the rasterizer samples pixel centres, the path tracer averages over the pixel, and at the
-    // edge of a radiance-17 emitter that difference dominates everything else.
+    // next to a radiance-17 emitter the 64 point samples that stand for it on the GPU are a poor
+    // near-field approximation, and sub-pixel geometry differences dominate everything else.
     auto luminance = [](const ImageRGBA32F& image, int x, int y) {
         const float* c = image.at(x, y);
         return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
@@ -61,13 +62,13 @@ TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell
     const double bias = sumGpu / sumRef - 1.0;
     INFO("tone-mapped mean |E| " << errors.meanAbsToneMapped);
     INFO("relative mean |dY| " << relativeMeanAbs << " and bias of the mean " << bias << " over " << used << " pixels");
-    if (errors.meanAbsToneMapped > 0.03 || relativeMeanAbs > 0.05 || std::abs(bias) > 0.01) {
+    if (errors.meanAbsToneMapped > 0.03 || relativeMeanAbs > 0.03 || std::abs(bias) > 0.01) {
         test::saveTestImage("cornell-direct-gl", gpu);
         test::saveTestImage("cornell-direct-pathtraced", reference);
     }
     CHECK(used > width * height / 2);
     CHECK(errors.meanAbsToneMapped < 0.03); // the issue's criterion, in SMCIR's tone-mapped metric
     CHECK(std::abs(bias) < 0.01);           // no systematic difference in light units or BRDF
-    CHECK(relativeMeanAbs < 0.05);          // per pixel: path-tracer noise, shadow-map edges
+    CHECK(relativeMeanAbs < 0.03);          // per pixel, within 3% (path-tracer noise, shadow-map edges)
 
 }

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# reference, compare and bench end to end: cache reuse, the report's parts, per-frame references
+# along an animation, the bench table and ratios.
+set -eu
+vplgi="$1"
+here="$(cd "$(dirname "$0")/../.." && pwd)"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cache="$work/cache"
+
+"$vplgi" reference --scene cornell --mode direct --spp 4 --width 32 --height 32 --cache "$cache" --out "$work/r.exr" > "$work/r1.log" 2>&1
+grep -q "rendered 4 spp" "$work/r1.log"
+"$vplgi" reference --scene cornell --mode direct --spp 4 --width 32 --height 32 --cache "$cache" --out "$work/r2.exr" > "$work/r2.log" 2>&1
+grep -q "from cache" "$work/r2.log"
+cmp "$work/r.exr" "$work/r2.exr" || python3 - "$work/r.exr" "$work/r2.exr" <<'PY'
+import sys; sys.exit(0 if open(sys.argv[1],'rb').read()[-4096:] == open(sys.argv[2],'rb').read()[-4096:] else 1)
+PY
+echo "reference: rendered once, then read from the cache"
+
+"$vplgi" compare --scene "$here/scenes/cornell.json" --techniques direct --width 48 --height 48 --spp 8 \
+  --cache "$cache" --out "$work/cmp" > "$work/c.log" 2>&1
+for part in '<table' 'images/reference-f0000.png' 'images/direct-f0000.png' 'images/direct-f0000-error.png' \
+            'luminance-pixel0.svg' 'metrics.csv'; do
+  grep -q "$part" "$work/cmp/index.html" || { echo "FAIL: index.html lacks $part"; exit 1; }
+done
+for f in images/reference-f0000.png images/direct-f0000.png images/direct-f0000-error.png images/direct-f0000.exr \
+         luminance-pixel7.svg metrics.csv metrics.json; do
+  test -s "$work/cmp/$f" || { echo "FAIL: $f missing"; exit 1; }
+done
+grep -q '<svg' "$work/cmp/luminance-pixel0.svg"
+test "$(wc -l < "$work/cmp/metrics.csv")" -eq 2
+python3 - "$work/cmp/metrics.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+t = d["techniques"][0]
+assert t["name"] == "direct" and 0 < t["meanAbsToneMapped"] < 1, t
+PY
+echo "compare: report complete"
+
+# Along an animation where a light moves every frame, every frame gets its own reference.
+"$vplgi" compare --scene "$here/scenes/maze.json" --techniques direct --frames 3 --width 32 --height 24 --spp 2 \
+  --cache "$cache" --out "$work/anim" > "$work/a.log" 2>&1
+python3 - "$work/anim/metrics.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["frames"] == 3 and d["reference"]["rendered"] == 3, d
+assert d["techniques"][0]["temporalAbsEPrime"] >= 0
+PY
+echo "compare: one reference per animated frame"
+
+"$vplgi" bench --scene maze --frames 2 --width 64 --height 36 --against direct > "$work/b.log" 2>&1
+grep -q "| gbuffer |" "$work/b.log"
+grep -q "ratio direct / direct" "$work/b.log"
+grep -q '"totalMedianMs"' "$work/b.log"
+echo "bench: table, ratios and JSON"
+
+if "$vplgi" reference --scene cornell --mode sideways --out "$work/x.exr" 2> "$work/e.log"; then exit 1; fi
+grep -q 'must be full, direct, indirect or clamped' "$work/e.log"
+if "$vplgi" compare --scene cornell --set nonsense.key=1 --out "$work/y" 2> "$work/e2.log"; then exit 1; fi
+grep -q 'unknown parameter "nonsense.key"' "$work/e2.log"
+test ! -e "$work/y"
+echo "report checks passed"
