@@ -49,6 +49,8 @@ public:
     const gl::Texture& displayTexture() const { return mToneMap.target(0); }
 
     const gl::PassTimer& timer() const { return mTimer; }
+    // Shadow cube maps re-rendered in the last frame that rebuilt shadows (moved emitters only).
+    int lastRenderedShadowCubes() const { return mShadows.lastRenderedCubes(); }
     const DirectLightSet& lights() const { return mLights; }
     Technique& technique() { return *mTechnique; }
     const RendererParams& params() const { return mParams; }

@@ -93,6 +93,7 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
     if (cubeCount > 0) {
         uploadArray(mCubeMatrices, "shadow cube matrices", cubeMatrices);
         const gl::TextureDesc& d = mCubes.desc();
+        bool reallocated = false;
         if (!mCubes || d.width != params.cubeSize || d.layers != cubeCount * 6) {
             gl::TextureDesc desc;
             desc.target = GL_TEXTURE_CUBE_MAP_ARRAY;
@@ -104,17 +105,38 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
             mCubeFramebuffer.attach(GL_DEPTH_ATTACHMENT, mCubes);
             mCubeFramebuffer.setDrawBuffers(0);
             mCubeFramebuffer.checkComplete();
+            reallocated = true;
         }
+        // Only cubes whose emitter moved are re-rendered, in runs of consecutive emitters.
+        std::vector<bool> dirty(static_cast<std::size_t>(cubeCount), true);
+        if (!reallocated && mRenderedPositions.size() == lights.points.size())
+            for (int i = 0; i < cubeCount; ++i)
+                dirty[i] = mRenderedPositions[i] != glm::vec3(lights.points[i].positionProfile);
+        mRenderedPositions.clear();
+        for (const shared::PointEmitter& e : lights.points) mRenderedPositions.push_back(glm::vec3(e.positionProfile));
+        mLastRenderedCubes = 0;
         glBindFramebuffer(GL_FRAMEBUFFER, mCubeFramebuffer.id());
         glViewport(0, 0, params.cubeSize, params.cubeSize);
-        const float one = 1.0f;
-        glClearNamedFramebufferfv(mCubeFramebuffer.id(), GL_DEPTH, 0, &one);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mCubeMatrices.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingPointEmitters, mEmitters.id());
         glUseProgram(mPointProgram.id());
-        mPointProgram.set("uFirstLayer", 0);
         mPointProgram.set("uFarDistance", mFar);
-        scene.draw(mPointProgram, GpuScene::Bind::Geometry, cubeCount * 6);
+        const float one = 1.0f;
+        for (int first = 0; first < cubeCount;) {
+            if (!dirty[first]) {
+                ++first;
+                continue;
+            }
+            int last = first;
+            while (last < cubeCount && dirty[last]) ++last;
+            const int layers = (last - first) * 6;
+            glClearTexSubImage(mCubes.id(), 0, 0, 0, first * 6, params.cubeSize, params.cubeSize, layers,
+                               GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+            mPointProgram.set("uFirstLayer", first * 6);
+            scene.draw(mPointProgram, GpuScene::Bind::Geometry, layers);
+            mLastRenderedCubes += last - first;
+            first = last;
+        }
     }
 
     // Directional emitters: orthographic maps around the scene's bounding sphere.

@@ -1,7 +1,8 @@
 // Pass 0: shadow maps for the direct emitters. Point emitters (point, spot, emissive samples) get a
 // cube map in a cube-map array storing radial distance / far; directional emitters get an
 // orthographic depth map fitted to the scene bounds in a 2D array. All faces of all cubes are drawn
-// with one instanced, layered draw per mesh. Re-rendered only when the lights change.
+// with one instanced, layered draw per mesh. Re-rendered only when the lights change, and then
+// only the cubes of emitters that moved.
 #pragma once
 
 #include "../api/shader_loader.h"
@@ -30,6 +31,8 @@ public:
     // Binds the shadow textures and the directional matrices for the shading passes.
     void bindForReading() const;
     float cubeFarDistance() const { return mFar; }
+    // Cube maps re-rendered by the last render() (emitters that moved, or all after a reallocation).
+    int lastRenderedCubes() const { return mLastRenderedCubes; }
 
 private:
     gl::Program mPointProgram;
@@ -43,6 +46,8 @@ private:
     gl::Buffer mEmitters;
     gl::Sampler mSampler;
     float mFar = 1.0f;
+    std::vector<glm::vec3> mRenderedPositions; // emitter positions the cubes were rendered for
+    int mLastRenderedCubes = 0;
 };
 
 } // namespace vplgi

@@ -229,6 +229,55 @@ TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluat
     CHECK(agreeing >= 0.9);
 }
 
+TEST_CASE("moving one light re-renders only its shadow cube, with the same image as a fresh render",
+          "[image][shadows]")
+{
+    FurnaceParams params;
+    params.rings = 24;
+    params.segments = 48;
+    Scene scene = makeFurnace(params);
+    // An occluder inside the sphere so that shadows matter, and two more point lights.
+    Mesh box = scene.meshes[0];
+    box.vertices.clear();
+    box.indices.clear();
+    const glm::vec3 c[8] = {{-0.2f, -0.2f, -0.6f}, {0.2f, -0.2f, -0.6f}, {0.2f, 0.2f, -0.6f}, {-0.2f, 0.2f, -0.6f},
+                            {-0.2f, -0.2f, -0.4f}, {0.2f, -0.2f, -0.4f}, {0.2f, 0.2f, -0.4f}, {-0.2f, 0.2f, -0.4f}};
+    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+    for (const auto& f : faces) {
+        std::uint32_t base = static_cast<std::uint32_t>(box.vertices.size());
+        glm::vec3 n = glm::normalize(glm::cross(c[f[1]] - c[f[0]], c[f[2]] - c[f[0]]));
+        for (int k = 0; k < 4; ++k) {
+            Vertex v;
+            v.position = c[f[k]];
+            v.normal = n;
+            box.vertices.push_back(v);
+        }
+        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) box.indices.push_back(base + i);
+    }
+    scene.meshes.push_back(box);
+    scene.instances.push_back(Instance{1, glm::mat4(1.0f)});
+    for (glm::vec3 p : {glm::vec3(0.3f, 0.2f, 0.0f), glm::vec3(-0.3f, -0.1f, 0.2f)}) {
+        Light l = scene.lights[0];
+        l.name = "extra" + std::to_string(scene.lights.size());
+        l.position = p;
+        scene.lights.push_back(l);
+    }
+    auto renderer = makeRenderer(scene);
+    const Camera camera = scene.cameras[0];
+    renderer->renderFrame(camera, 64, 48);
+    CHECK(renderer->lastRenderedShadowCubes() == 3);
+    scene.lights[1].position = glm::vec3(0.1f, 0.3f, -0.1f);
+    renderer->markLightsChanged();
+    renderer->renderFrame(camera, 64, 48);
+    CHECK(renderer->lastRenderedShadowCubes() == 1);
+    const ImageRGBA32F updated = renderer->readDirect();
+
+    auto fresh = makeRenderer(scene);
+    fresh->renderFrame(camera, 64, 48);
+    const ImageRGBA32F expected = fresh->readDirect();
+    CHECK(updated.pixels == expected.pixels);
+}
+
 TEST_CASE("shared glTF scenes load and render", "[image][shared]")
 {
     const std::filesystem::path dir = std::filesystem::path(VPLGI_SHARED_DIR) / "scenes";
