@@ -247,6 +247,25 @@ TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) dir
     }
 }
 
+TEST_CASE("white box (albedo 1) conserves energy: each bounce adds exactly Le", "[reference]")
+{
+    // With rho = 1 nothing is absorbed, so the full series diverges; with the depth capped at n (and
+    // no Russian roulette) each of the n + 1 vertices contributes exactly Le in expectation:
+    // L = (n + 1) Le. Any loss or gain of energy in sampling or MIS weighting shows up directly.
+    const glm::vec3 emission(0.7f, 0.7f, 0.7f);
+    const Scene scene = makeEmissiveBox(1.0f, emission, 2);
+    const RayScene rays(scene);
+    for (int depth : {0, 1, 3, 6}) {
+        PathTracerParams params;
+        params.maxDepth = depth;
+        params.rrStartDepth = depth + 1; // no Russian roulette
+        params.spp = 64;
+        const ImageRGBA32F image = render(scene, rays, scene.cameras[0], 8, params);
+        INFO("maxDepth " << depth);
+        CHECK(meanChannel(image, 1) == Approx(emission.g * (depth + 1)).epsilon(0.01));
+    }
+}
+
 TEST_CASE("cornell direct light on the floor matches a quadrature of the emissive quad", "[reference]")
 {
     const Scene scene = makeBuiltinScene("cornell");
