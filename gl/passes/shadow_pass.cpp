@@ -17,6 +17,7 @@ void ShadowParams::visitParams(ParamVisitor& v)
     v.field("shadow.normalOffset", normalOffset, 0.0f, 16.0f, "receiver offset along the normal [shadow texels]");
     v.field("shadow.depthBias", depthBias, 0.0f, 10.0f, "constant distance bias [m]");
     v.field("shadow.pcfRadius", pcfRadius, 0, 4, "directional PCF kernel radius [texels]");
+    v.field("shadow.updateMovedOnly", updateMovedOnly, "re-render only the cube maps of emitters that moved");
 }
 
 namespace {
@@ -109,7 +110,7 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
         }
         // Only cubes whose emitter moved are re-rendered, in runs of consecutive emitters.
         std::vector<bool> dirty(static_cast<std::size_t>(cubeCount), true);
-        if (!reallocated && mRenderedPositions.size() == lights.points.size())
+        if (!reallocated && params.updateMovedOnly && mRenderedPositions.size() == lights.points.size())
             for (int i = 0; i < cubeCount; ++i)
                 dirty[i] = mRenderedPositions[i] != glm::vec3(lights.points[i].positionProfile);
         mRenderedPositions.clear();

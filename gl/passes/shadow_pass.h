@@ -19,6 +19,7 @@ struct ShadowParams {
     float normalOffset = 1.5f;  // receiver offset along the normal [shadow texels]
     float depthBias = 0.0f;     // extra constant distance bias [m]
     int pcfRadius = 1;          // directional PCF kernel radius [texels]
+    bool updateMovedOnly = true; // re-render only the cubes of emitters that moved (false: all)
     void visitParams(ParamVisitor& visitor);
 };
 

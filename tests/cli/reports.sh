@@ -51,6 +51,9 @@ echo "compare: one reference per animated frame"
 "$vplgi" bench --scene maze --frames 2 --width 64 --height 36 --against direct > "$work/b.log" 2>&1
 grep -q "| gbuffer |" "$work/b.log"
 grep -q "ratio direct / direct" "$work/b.log"
+"$vplgi" bench --scene "$here/scenes/maze.json" --frames 2 --width 32 --height 18 --against direct \
+  --against-set shadow.updateMovedOnly=false > "$work/b2.log" 2>&1
+grep -q "ratio direct (against-set) / direct" "$work/b2.log"
 grep -q '"totalMedianMs"' "$work/b.log"
 echo "bench: table, ratios and JSON"
 
