@@ -131,21 +131,11 @@ int runBench(const std::vector<std::string>& args)
     require(parser.has("against") || !parser.has("against-set"), "--against-set needs --against");
     Settings againstSettings = settings;
     for (const std::string& s : parser.getAll("against-set")) againstSettings.push_back(parseSetting(s));
-    std::unique_ptr<gl::Context> context;
-    std::vector<std::unique_ptr<Session>> sessions;
-    std::set<std::string> used;
-    for (std::size_t i = 0; i < names.size(); ++i) {
-        SessionOptions options;
-        options.sceneSpec = parser.get("scene");
-        options.technique = names[i];
-        options.camera = parser.get("camera");
-        options.settings = i == 0 ? settings : againstSettings;
-        options.rejectUnknownSettings = false;
-        sessions.push_back(std::make_unique<Session>(options));
-        used.insert(sessions.back()->usedKeys().begin(), sessions.back()->usedKeys().end());
-    }
-    for (const auto& setting : againstSettings)
-        require(used.count(setting.first) > 0, "unknown parameter \"" + setting.first + "\"");
+    std::unique_ptr<gl::Context> context; // outlives the sessions' GL objects
+    std::vector<Settings> perTechnique = {settings};
+    if (names.size() == 2) perTechnique.push_back(againstSettings);
+    std::vector<std::unique_ptr<Session>> sessions =
+        createSessions(parser.get("scene"), parser.get("camera"), names, perTechnique);
     context = gl::createHeadlessContext();
     std::printf("scene %s, %dx%d, %s\n\n", sessions.front()->scene().source.c_str(), width, height,
                 context->description().c_str());

@@ -96,25 +96,17 @@ int runCompare(const std::vector<std::string>& args)
     referenceParams.spp = parser.getInt("spp", 1, 1 << 24);
     ParamSetter referenceSetter(settings);
     referenceParams.visitParams(referenceSetter);
-    std::set<std::string> used = referenceSetter.usedKeys();
-
     std::unique_ptr<gl::Context> context; // outlives the sessions' GL objects
+    std::vector<std::unique_ptr<Session>> sessions =
+        createSessions(parser.get("scene"), parser.get("camera"), techniques,
+                       std::vector<Settings>(techniques.size(), settings), referenceSetter.usedKeys());
     std::vector<TechniqueRun> runs;
-    for (const std::string& technique : techniques) {
-        SessionOptions options;
-        options.sceneSpec = parser.get("scene");
-        options.technique = technique;
-        options.camera = parser.get("camera");
-        options.settings = settings;
-        options.rejectUnknownSettings = false;
+    for (std::size_t i = 0; i < techniques.size(); ++i) {
         TechniqueRun run;
-        run.name = technique;
-        run.session = std::make_unique<Session>(options);
-        used.insert(run.session->usedKeys().begin(), run.session->usedKeys().end());
+        run.name = techniques[i];
+        run.session = std::move(sessions[i]);
         runs.push_back(std::move(run));
     }
-    for (const auto& setting : settings)
-        require(used.count(setting.first) > 0, "unknown parameter \"" + setting.first + "\"");
 
     std::filesystem::create_directories(outDir + "/images");
     context = gl::createHeadlessContext();

@@ -85,4 +85,27 @@ std::string Session::configuration()
            "\n" + dumper.text();
 }
 
+std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpec, const std::string& camera,
+                                                     const std::vector<std::string>& techniques,
+                                                     const std::vector<Settings>& settingsPerTechnique,
+                                                     const std::set<std::string>& alsoKnown)
+{
+    std::vector<std::unique_ptr<Session>> sessions;
+    std::set<std::string> used = alsoKnown;
+    for (std::size_t i = 0; i < techniques.size(); ++i) {
+        SessionOptions options;
+        options.sceneSpec = sceneSpec;
+        options.technique = techniques[i];
+        options.camera = camera;
+        options.settings = settingsPerTechnique[i];
+        options.rejectUnknownSettings = false;
+        sessions.push_back(std::make_unique<Session>(options));
+        used.insert(sessions.back()->usedKeys().begin(), sessions.back()->usedKeys().end());
+    }
+    for (const Settings& settings : settingsPerTechnique)
+        for (const auto& setting : settings)
+            require(used.count(setting.first) > 0, "unknown parameter \"" + setting.first + "\"");
+    return sessions;
+}
+
 } // namespace vplgi

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/params.h"
 #include "core/scene_loader.h"
 #include "gl/api/shader_loader.h"
 #include "gl/renderer.h"
@@ -29,6 +30,14 @@ class OptionParser;
 // Declares --scene, --technique, --camera, --set on a subcommand's parser, and reads them back.
 void addSessionOptions(OptionParser& parser);
 SessionOptions sessionOptions(const OptionParser& parser);
+
+class Session;
+// Sessions of one scene with several techniques (compare, bench): each gets its settings list; keys
+// no session (and no field in `alsoKnown`) recognises are an error, checked before any GL work.
+std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpec, const std::string& camera,
+                                                     const std::vector<std::string>& techniques,
+                                                     const std::vector<Settings>& settingsPerTechnique,
+                                                     const std::set<std::string>& alsoKnown = {});
 
 class Session {
 public:

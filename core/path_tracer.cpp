@@ -260,13 +260,17 @@ public:
         collectEmitters();
     }
 
-    glm::vec3 radiance(Ray ray, Pcg32& rng) const;
+    glm::vec3 radiance(Ray ray, Pcg32& rng) const { return trace(ray, nullptr, rng, nullptr); }
+    // The path of radiance(), or with `start` the path whose vertex 0 is *start (wo = its shading
+    // normal, no intersection, no emission at vertex 0). Adds the Embree rays cast to *rays if given.
+    glm::vec3 trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays) const;
 
 private:
     void collectEmitters();
     glm::vec3 emitted(const Hit& hit, const SurfacePoint& s, const glm::vec3& wo) const;
     float lightPdf(const Hit& hit, const glm::vec3& wo) const;
-    glm::vec3 sampleEmitters(const SurfacePoint& s, const glm::vec3& wo, float u0, float u1, float u2) const;
+    glm::vec3 sampleEmitters(const SurfacePoint& s, const glm::vec3& wo, float u0, float u1, float u2,
+                             std::uint64_t* rays) const;
 
     bool countsEmission(int depth) const
     {
@@ -369,7 +373,8 @@ float Integrator::lightPdf(const Hit& hit, const glm::vec3& wo) const
 }
 
 // One area-light sample for the point s (next-event estimation), weighted against BRDF sampling.
-glm::vec3 Integrator::sampleEmitters(const SurfacePoint& s, const glm::vec3& wo, float u0, float u1, float u2) const
+glm::vec3 Integrator::sampleEmitters(const SurfacePoint& s, const glm::vec3& wo, float u0, float u1, float u2,
+                                     std::uint64_t* rays) const
 {
     if (!(mTotalPower > 0.0)) return glm::vec3(0.0f);
     // upper_bound never returns a zero-power triangle: its running sum equals its predecessor's.
@@ -412,6 +417,7 @@ glm::vec3 Integrator::sampleEmitters(const SurfacePoint& s, const glm::vec3& wo,
     // Both ends lifted off their surfaces, the light point towards the receiver.
     const glm::vec3 origin = s.position + s.geometricNormal * mOffset;
     const glm::vec3 end = y + (signedCosLight > 0.0f ? e.normal : -e.normal) * mOffset;
+    if (rays) ++*rays;
     if (!mRays.visible(origin, end)) return glm::vec3(0.0f);
 
     const float pdfLight = static_cast<float>(e.power / mTotalPower) / e.area * distance2 / cosLight;
@@ -419,7 +425,26 @@ glm::vec3 Integrator::sampleEmitters(const SurfacePoint& s, const glm::vec3& wo,
     return f * radiance * (cosSurface * weight / pdfLight);
 }
 
-glm::vec3 Integrator::radiance(Ray ray, Pcg32& rng) const
+// Shadow rays evaluateDirectLight casts for this point: it mirrors that function's early-outs
+// (light behind the shading normal, zero emission profile) so ray counts are exact.
+std::uint64_t countDirectLightRays(const DirectLightSet& lights, const SurfacePoint& point)
+{
+    std::uint64_t count = 0;
+    for (const shared::PointEmitter& e : lights.points) {
+        const glm::vec3 toLight = glm::vec3(e.positionProfile) - point.position;
+        const float distance2 = glm::dot(toLight, toLight);
+        if (!(distance2 > 0.0f)) continue;
+        const glm::vec3 wi = toLight / std::sqrt(distance2);
+        if (glm::dot(point.normal, wi) <= 0.0f) continue;
+        if (shared::emitterProfile(e, -wi) <= 0.0f) continue;
+        ++count;
+    }
+    for (const shared::DirectionalEmitter& d : lights.directionals)
+        if (glm::dot(point.normal, -glm::vec3(d.direction)) > 0.0f) ++count;
+    return count;
+}
+
+glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays) const
 {
     const int maxDepth = mParams.mode == Mode::Direct ? std::min(mParams.maxDepth, 1) : mParams.maxDepth;
     glm::vec3 radiance(0.0f);
@@ -431,24 +456,32 @@ glm::vec3 Integrator::radiance(Ray ray, Pcg32& rng) const
         for (float& number : u)
             number = rng.uniform();
 
-        const Hit hit = mRays.intersect(ray);
-        if (!hit.valid()) break; // no environment light
-        const glm::vec3 wo = -ray.direction;
-        const SurfacePoint s = surfaceAt(mScene, hit, wo);
+        SurfacePoint s;
+        glm::vec3 wo;
+        if (depth == 0 && start) {
+            s = *start; // a given vertex 0: its emission is not part of the estimate
+            wo = s.normal;
+        } else {
+            const Hit hit = mRays.intersect(ray);
+            if (rays) ++*rays;
+            if (!hit.valid()) break; // no environment light
+            wo = -ray.direction;
+            s = surfaceAt(mScene, hit, wo);
 
-        if (mParams.mode == Mode::Clamped && depth == 1) {
-            // SMCIR Sec. 5.4: clamp G of the segment x0 -> x1 as VPL methods clamp it (MATH.md 1.2 a).
-            const float cosine = std::max(0.0f, glm::dot(s.normal, wo));
-            const float geometry = previousCosine * cosine / (hit.t * hit.t);
-            if (geometry > mParams.clampGeometry) throughput *= mParams.clampGeometry / geometry;
-        }
+            if (mParams.mode == Mode::Clamped && depth == 1) {
+                // SMCIR Sec. 5.4: clamp G of the segment x0 -> x1 as VPL methods clamp it (MATH.md 1.2 a).
+                const float cosine = std::max(0.0f, glm::dot(s.normal, wo));
+                const float geometry = previousCosine * cosine / (hit.t * hit.t);
+                if (geometry > mParams.clampGeometry) throughput *= mParams.clampGeometry / geometry;
+            }
 
-        if (countsEmission(depth)) {
-            const glm::vec3 emission = emitted(hit, s, wo);
-            if (!isBlack(emission)) {
-                // Emission found by BRDF sampling shares the estimate with light sampling (MIS).
-                const float weight = depth == 0 ? 1.0f : powerHeuristic(previousPdf, lightPdf(hit, wo));
-                radiance += throughput * emission * weight;
+            if (countsEmission(depth)) {
+                const glm::vec3 emission = emitted(hit, s, wo);
+                if (!isBlack(emission)) {
+                    // Emission found by BRDF sampling shares the estimate with light sampling (MIS).
+                    const float weight = depth == 0 ? 1.0f : powerHeuristic(previousPdf, lightPdf(hit, wo));
+                    radiance += throughput * emission * weight;
+                }
             }
         }
         if (depth >= maxDepth) break;
@@ -456,9 +489,11 @@ glm::vec3 Integrator::radiance(Ray ray, Pcg32& rng) const
         if (glm::dot(s.geometricNormal, wo) <= 0.0f) break;
 
         if (countsLightSamples(depth)) {
-            glm::vec3 direct = sampleEmitters(s, wo, u[0], u[1], u[2]);
-            if (!mPunctual.points.empty() || !mPunctual.directionals.empty())
+            glm::vec3 direct = sampleEmitters(s, wo, u[0], u[1], u[2], rays);
+            if (!mPunctual.points.empty() || !mPunctual.directionals.empty()) {
                 direct += evaluateDirectLight(mRays, mPunctual, s, wo);
+                if (rays) *rays += countDirectLightRays(mPunctual, s);
+            }
             radiance += throughput * direct;
         }
 
@@ -605,6 +640,72 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
     }
     result.seconds = elapsed();
     return result;
+}
+
+// --- Reflected radiance at a surface point ------------------------------------------------------
+
+struct ReflectedRadianceEstimator::Impl {
+    PathTracerParams params; // declared before the integrator, which keeps a reference to it
+    Integrator integrator;
+
+    Impl(const Scene& scene, const RayScene& rays, const PathTracerParams& p)
+        : params(p), integrator(scene, rays, params)
+    {
+    }
+};
+
+namespace {
+
+PathTracerParams reflectedRadianceParams(int maxBounces)
+{
+    require(maxBounces >= 1 && maxBounces <= 1024, "reflected radiance: maxBounces must be in [1, 1024]");
+    PathTracerParams params;
+    params.mode = Mode::Full; // vertex 0's emission is skipped by trace() itself
+    params.maxDepth = maxBounces;
+    params.rrStartDepth = 3; // as the reference's default: Russian roulette from vertex 3 on
+    return params;
+}
+
+// Distinguishes these streams from the image's (whose pixel index stays below 2^32 - 1 in practice).
+constexpr std::uint32_t kReflectedRadianceStream = 0xFFFFFFFFu;
+
+} // namespace
+
+ReflectedRadianceEstimator::ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, int maxBounces)
+    : mImpl(std::make_unique<Impl>(scene, rays, reflectedRadianceParams(maxBounces)))
+{
+    assert(&rays.scene() == &scene && "the RayScene must be built from this scene");
+}
+
+ReflectedRadianceEstimator::~ReflectedRadianceEstimator() = default;
+
+glm::vec3 ReflectedRadianceEstimator::estimate(const SurfacePoint& y, int samples, std::uint32_t seed,
+                                               std::uint64_t* rays) const
+{
+    require(samples >= 1, "reflected radiance: samples must be >= 1");
+    // SMCIR 3.1: indirectly visible surfaces are treated as Lambertian, so the VPL reflects with the
+    // diffuse lobe only: rho_d / pi with rho_d = (1 - metallic) * baseColor (F0 = 0 turns off GGX).
+    SurfacePoint diffuse = y;
+    diffuse.material.baseColor = (1.0f - y.material.metallic) * y.material.baseColor;
+    diffuse.material.metallic = 0.0f;
+    diffuse.material.specular = 0.0f;
+    std::uint64_t count = 0;
+    glm::dvec3 sum(0.0);
+    for (int s = 0; s < samples; ++s) {
+        Pcg32 rng = sampleStream(seed, kReflectedRadianceStream, static_cast<std::uint32_t>(s));
+        const glm::vec3 L = mImpl->integrator.trace(Ray{}, &diffuse, rng, rays ? &count : nullptr);
+        // A non-finite sample (a numerical accident) counts as black, deterministically.
+        if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += glm::dvec3(L);
+    }
+    if (rays) *rays += count;
+    return glm::vec3(sum / static_cast<double>(samples));
+}
+
+glm::vec3 estimateReflectedRadiance(const Scene& scene, const RayScene& rays, const SurfacePoint& y, int samples,
+                                    int maxBounces, std::uint32_t seed, std::uint64_t* rayCount)
+{
+    const ReflectedRadianceEstimator estimator(scene, rays, maxBounces);
+    return estimator.estimate(y, samples, seed, rayCount);
 }
 
 } // namespace vplgi

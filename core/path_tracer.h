@@ -74,6 +74,14 @@
 //  Russian roulette in play the modes follow identical paths: Full = Direct + Indirect per sample
 //  up to rounding (a test checks this).
 //
+//  Reflected radiance at a given point (ReflectedRadianceEstimator, SMCIR 3.2.3): the same
+//  integrator, but the path starts at a surface point y instead of a camera ray. Vertex 0 is y with
+//  its material reduced to the diffuse lobe ((1 - metallic) * baseColor / pi, SMCIR 3.1's Lambert
+//  assumption) and wo = n; y's own emission is left out (the renderer draws emitters directly).
+//  The result is the diffuse exitant radiance L(y) = (rho_d/pi) * irradiance, with light reflected
+//  at most `maxBounces` times counting the reflection at y (1 = direct light at y only). A VPL
+//  carries it as its radiance (core/vpl.h).
+//
 //  Determinism: sample s of pixel p uses its own PCG32 stream seeded from hash(seed, p, s); pixels
 //  sum their samples in sample order. The image is bit-identical for a given seed and sample count
 //  whatever the thread count and scheduling. With a time budget, the sample count reached depends
@@ -93,6 +101,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -105,6 +114,7 @@
 namespace vplgi {
 
 class ParamVisitor;
+struct SurfacePoint;
 
 struct PathTracerParams {
     enum class Mode { Full = 0, Direct = 1, Indirect = 2, Clamped = 3 };
@@ -139,6 +149,36 @@ using ProgressCallback = std::function<void(double fraction)>;
 // Throws Error for bad sizes or parameters.
 ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
                                 const PathTracerParams& params, ProgressCallback progress = {});
+
+// --- Reflected radiance at a surface point (the radiance of a VPL, SMCIR 3.2.3) ------------------
+
+// Holds the scene's lights as the path tracer sees them (build it again after lights change) and
+// estimates the diffuse exitant radiance L(y) [W/(m^2 sr)] at surface points: (rho_d/pi) times the
+// irradiance at y, rho_d = (1 - metallic) * baseColor, with next-event estimation and MIS as
+// renderReference, light reflected at most maxBounces times including at y, no emission of y.
+// Thread-safe: estimate() may run concurrently. The scene must outlive the estimator and its
+// lights must not change while it lives.
+class ReflectedRadianceEstimator {
+public:
+    // maxBounces in [1, 1024]: 1 = direct light at y, 3 = SMCIR's default. Throws Error otherwise.
+    ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, int maxBounces);
+    ~ReflectedRadianceEstimator();
+    ReflectedRadianceEstimator(const ReflectedRadianceEstimator&) = delete;
+    ReflectedRadianceEstimator& operator=(const ReflectedRadianceEstimator&) = delete;
+
+    // Mean of `samples` paths from y (samples >= 1). Sample s draws its random numbers from
+    // hash(seed, s) only, so the same (y, seed) gives the same value. When `rays` is not null, the
+    // Embree rays cast (intersect and occluded) are added to *rays.
+    glm::vec3 estimate(const SurfacePoint& y, int samples, std::uint32_t seed, std::uint64_t* rays = nullptr) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+// One-off convenience: builds a ReflectedRadianceEstimator and calls estimate() once.
+glm::vec3 estimateReflectedRadiance(const Scene& scene, const RayScene& rays, const SurfacePoint& y, int samples,
+                                    int maxBounces, std::uint32_t seed, std::uint64_t* rayCount = nullptr);
 
 // --- BRDF sampling of the shared material (glsl/shared/brdf.h), exposed for tests ---------------
 

@@ -10,8 +10,7 @@ namespace vplgi {
 
 namespace {
 
-gl::Texture makeTexture(const std::string& name, int width, int height, bool srgb, const std::uint8_t* rgba,
-                        bool flipRows)
+gl::Texture makeTexture(const std::string& name, int width, int height, bool srgb, const std::uint8_t* rgba)
 {
     gl::TextureDesc desc;
     desc.format = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
@@ -20,7 +19,6 @@ gl::Texture makeTexture(const std::string& name, int width, int height, bool srg
     desc.levels = 0; // full mip chain
     gl::Texture texture(name, desc);
     // glTF images have their first row at v = 0 and GL samples row 0 at t = 0: upload as is.
-    (void)flipRows;
     glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     glGenerateTextureMipmap(texture.id());
     return texture;
@@ -56,8 +54,8 @@ GpuScene::GpuScene(const Scene& scene) : mScene(scene)
     }
     const std::uint8_t white[4] = {255, 255, 255, 255};
     const std::uint8_t flat[4] = {128, 128, 255, 255};
-    mWhite = makeTexture("default white", 1, 1, false, white, false);
-    mFlatNormal = makeTexture("default flat normal", 1, 1, false, flat, false);
+    mWhite = makeTexture("default white", 1, 1, false, white);
+    mFlatNormal = makeTexture("default flat normal", 1, 1, false, flat);
     gl::SamplerDesc samplerDesc;
     samplerDesc.minFilter = GL_LINEAR_MIPMAP_LINEAR;
     samplerDesc.wrap = GL_REPEAT;
@@ -81,7 +79,7 @@ const gl::Texture& GpuScene::imageTexture(int image, bool srgb) const
     auto& textures = const_cast<std::map<std::pair<int, bool>, gl::Texture>&>(mImageTextures);
     return textures
         .emplace(key, makeTexture("image " + std::to_string(image) + " " + img.name + (srgb ? " (sRGB)" : ""),
-                                  img.width, img.height, srgb, img.rgba.data(), false))
+                                  img.width, img.height, srgb, img.rgba.data()))
         .first->second;
 }
 

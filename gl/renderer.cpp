@@ -81,14 +81,8 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
         gl::PassTimer::Scope scope(mTimer, "shadow maps");
         mLights = buildDirectLights(mScene, mParams.lights);
         mShadows.render(mGpuScene, mLights, mParams.shadow);
-        auto upload = [](gl::Buffer& buffer, const char* name, const auto& data) {
-            using T = typename std::decay_t<decltype(data)>::value_type;
-            GLsizeiptr size = static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T));
-            if (!buffer || buffer.size() < size) buffer = gl::Buffer(name, size);
-            buffer.upload(0, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data());
-        };
-        upload(mPointEmitters, "point emitters", mLights.points);
-        upload(mDirectionalEmitters, "directional emitters", mLights.directionals);
+        gl::uploadVector(mPointEmitters, "point emitters", mLights.points);
+        gl::uploadVector(mDirectionalEmitters, "directional emitters", mLights.directionals);
         mLightsChanged = false;
     }
     updateFrameUniforms(camera, width, height);

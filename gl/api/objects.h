@@ -148,6 +148,16 @@ public:
     Query(const std::string& name, GLenum target);
 };
 
+// Uploads `data` to `buffer`, first (re)creating it when it is missing or too small; an empty
+// vector still leaves a valid one-element buffer so the binding point is never unbound.
+template <typename T>
+void uploadVector(Buffer& buffer, const std::string& name, const std::vector<T>& data)
+{
+    const GLsizeiptr size = static_cast<GLsizeiptr>((data.empty() ? 1 : data.size()) * sizeof(T));
+    if (!buffer || buffer.size() < size) buffer = Buffer(name, size);
+    buffer.upload(0, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data());
+}
+
 // Reads level 0 of a 2D texture (layer `layer` of an array) as RGBA floats, rows bottom to top (GL order).
 std::vector<float> readTextureRGBA32F(const Texture& texture, int layer = 0);
 

@@ -13,6 +13,8 @@ namespace vplgi::gl {
 
 namespace fs = std::filesystem;
 
+namespace {
+
 // #line numbers carry the file: line = file index * kLineStride + line in file. Source-string
 // numbers (`#line L S`) would be the natural carrier, but Mesa reports some errors (e.g. undeclared
 // identifiers) with source string 0 regardless, so only the line number is trusted.
@@ -22,6 +24,8 @@ std::string lineDirective(int fileIndex, int line)
 {
     return "#line " + std::to_string(fileIndex * kLineStride + line) + "\n";
 }
+
+} // namespace
 
 ShaderLoader::ShaderLoader(std::string glslDirectory) : mDirectory(std::move(glslDirectory))
 {

@@ -38,14 +38,6 @@ gl::Program loadDirectional(const gl::ShaderLoader& shaders)
 const glm::vec3 kFaceDirection[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 const glm::vec3 kFaceUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
 
-template <typename T>
-void uploadArray(gl::Buffer& buffer, const char* name, const std::vector<T>& data)
-{
-    GLsizeiptr size = static_cast<GLsizeiptr>(std::max<std::size_t>(1, data.size()) * sizeof(T));
-    if (!buffer || buffer.size() < size) buffer = gl::Buffer(name, size);
-    buffer.upload(0, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data());
-}
-
 } // namespace
 
 ShadowPass::ShadowPass(const gl::ShaderLoader& shaders)
@@ -90,9 +82,9 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
         for (int f = 0; f < 6; ++f)
             cubeMatrices.push_back(faceProjection * glm::lookAt(p, p + kFaceDirection[f], kFaceUp[f]));
     }
-    uploadArray(mEmitters, "shadow emitters", lights.points);
+    gl::uploadVector(mEmitters, "shadow emitters", lights.points);
     if (cubeCount > 0) {
-        uploadArray(mCubeMatrices, "shadow cube matrices", cubeMatrices);
+        gl::uploadVector(mCubeMatrices, "shadow cube matrices", cubeMatrices);
         const gl::TextureDesc& d = mCubes.desc();
         bool reallocated = false;
         if (!mCubes || d.width != params.cubeSize || d.layers != cubeCount * 6) {
@@ -153,7 +145,7 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
         directionalMatrices.push_back(projection * view);
         d.direction.w = static_cast<float>(i);
     }
-    uploadArray(mDirectionalMatrices, "shadow directional matrices", directionalMatrices);
+    gl::uploadVector(mDirectionalMatrices, "shadow directional matrices", directionalMatrices);
     if (!lights.directionals.empty()) {
         const int count = static_cast<int>(lights.directionals.size());
         const gl::TextureDesc& d = mDirectional.desc();

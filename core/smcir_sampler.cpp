@@ -1,0 +1,714 @@
+#include "smcir_sampler.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "error.h"
+#include "knn.h"
+#include "params.h"
+#include "path_tracer.h"
+
+namespace vplgi {
+
+void SMCIRParams::visitParams(ParamVisitor& v)
+{
+    v.field("smcir.vplCount", vplCount, 1, 1 << 20, "I: VPL budget (slots)");
+    v.field("smcir.maxMoves", maxMoves, 0, 1 << 20, "M_max: most VPL slots that change per frame");
+    v.field("smcir.validationRays", validationRays, 0, 1024,
+            "V: invalid VPLs each camera point tests per validation round (3.2.2)");
+    v.field("smcir.validationIterations", validationIterations, 0, 16, "validation rounds per frame (3.2.2)");
+    v.field("smcir.candidateFactor", candidateFactor, 1, 256,
+            "candidate rays per VPL, resampled down to I candidates (3.2.1: 16)");
+    v.field("smcir.resampleRetries", resampleRetries, 0, 64, "redraws for duplicate candidates (3.2.1: 8)");
+    v.field("smcir.candidateDensityK", candidateDensityK, 1, 64,
+            "k of the kNN density of the raw candidate points (resampling weights)");
+    v.field("smcir.radiositySamples", radiositySamples, 1, 65536, "path-tracer samples per VPL radiance (3.2.3)");
+    v.field("smcir.radiosityBounces", radiosityBounces, 1, 1024,
+            "most reflections of the radiance paths, counting the one at the VPL (3.2.3: 3)");
+    v.field("smcir.knnRender", knnRender, 0, 1024,
+            "k of the rendering densities; 0 = eq. (8), max(1, floor(sqrt(I/32)))");
+    v.field("smcir.strongFraction", strongFraction, 0.0f, 1.0f,
+            "eq. (9): candidates stronger than this fraction of the VPLs are strong");
+    v.field("smcir.cameraSamplesX", cameraSamplesX, 1, 4096, "camera-ray grid columns (jittered per frame)");
+    v.field("smcir.cameraSamplesY", cameraSamplesY, 1, 4096, "camera-ray grid rows (jittered per frame)");
+    v.field("smcir.warmupIterations", warmupIterations, 0, 100000,
+            "frames run before the first one is shown (paper: 100)");
+    v.field("smcir.seed", seed, "random stream seed (same seed and cameras, same VPLs)");
+}
+
+int computeRenderingK(int vplCount)
+{
+    // Eq. (8), read as k = max(1, floor(sqrt(I / 32))) (papers/README.md, MATH.md 2).
+    return std::max(1, static_cast<int>(std::floor(std::sqrt(static_cast<double>(vplCount) / 32.0))));
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// --- Random numbers (the path tracer's generator; no std:: distributions) ----------------------
+
+// PCG32 (O'Neill 2014, pcg32_random_r).
+class Pcg32 {
+public:
+    Pcg32(std::uint64_t state, std::uint64_t sequence) : mIncrement((sequence << 1u) | 1u)
+    {
+        next();
+        mState += state;
+        next();
+    }
+
+    std::uint32_t next()
+    {
+        const std::uint64_t old = mState;
+        mState = old * 6364136223846793005ull + mIncrement;
+        const auto xorShifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const auto rotation = static_cast<std::uint32_t>(old >> 59u);
+        return (xorShifted >> rotation) | (xorShifted << ((32u - rotation) & 31u));
+    }
+
+    // Uniform in [0, 1): 24 random bits, never 1.
+    float uniform() { return static_cast<float>(next() >> 8u) * 0x1p-24f; }
+    // Uniform in [0, n) for n >= 1 (multiply-shift; the bias is below 2^-32 * n).
+    std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>((std::uint64_t(next()) * n) >> 32u); }
+
+private:
+    std::uint64_t mState = 0;
+    std::uint64_t mIncrement;
+};
+
+// SplitMix64's finalizer.
+std::uint64_t mix64(std::uint64_t z)
+{
+    z += 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30u)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27u)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31u);
+}
+
+// Which part of a frame a stream belongs to; with (seed, frame, item) it names the stream.
+enum Stage : std::uint64_t {
+    kStageCamera = 1,
+    kStageCandidateRays = 2,
+    kStageResample = 3,         // + retry round
+    kStageRadianceSeed = 100,
+    kStageValidation = 200,     // + validation round
+};
+
+std::uint64_t streamKey(std::uint32_t seed, std::uint64_t frame, std::uint64_t stage, std::uint64_t item)
+{
+    return mix64(mix64(mix64((static_cast<std::uint64_t>(seed) << 32u) ^ stage) ^ frame) ^ item);
+}
+
+Pcg32 stream(std::uint32_t seed, std::uint64_t frame, std::uint64_t stage, std::uint64_t item)
+{
+    const std::uint64_t key = streamKey(seed, frame, stage, item);
+    return Pcg32(key, mix64(key ^ 0xD1B54A32D192ED03ull));
+}
+
+// --- Small helpers -----------------------------------------------------------------------------
+
+float luminance(const glm::vec3& c)
+{
+    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+// Eq. (6) by luminance: I(y) = L(y) / p(y). A point without a density estimate (no neighbours) is
+// infinitely strong when it reflects anything.
+float intensityOf(const glm::vec3& radiance, float density)
+{
+    const float L = luminance(radiance);
+    if (density > 0.0f) return L / density;
+    return L > 0.0f ? std::numeric_limits<float>::infinity() : 0.0f;
+}
+
+// Orthonormal t, b with (t, b, n) right-handed (Duff et al. 2017).
+void makeBasis(const glm::vec3& n, glm::vec3& t, glm::vec3& b)
+{
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float c = n.x * n.y * a;
+    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+template <typename F>
+void parallelFor(std::size_t count, std::size_t grain, const F& body)
+{
+    if (count == 0) return;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+            body(i);
+    });
+}
+
+} // namespace
+
+// A point of X: a surface point seen by a primary ray.
+struct SMCIRSampler::CameraPoint {
+    glm::vec3 position{0.0f}; // on the surface [m]
+    glm::vec3 origin{0.0f};   // lifted off the surface along `normal` (ray origin)
+    glm::vec3 normal{0.0f};   // geometric normal, on the camera's side (unit)
+};
+
+// What the sampler keeps per slot beside the published VPL.
+struct SMCIRSampler::SlotState {
+    SurfacePoint surface;           // the VPL's surface point (radiance is re-estimated from it)
+    glm::vec3 origin{0.0f};         // the VPL lifted off its surface (end of visibility rays)
+    CameraPoint associated;         // 3.2.2 mail box: a camera-visible point that sees the VPL
+    std::uint32_t radianceSeed = 0; // 3.2.3: kept for the VPL's life
+    std::uint64_t radianceEpoch = 0;
+};
+
+// A VPL candidate (an element of Y^).
+struct SMCIRSampler::Candidate {
+    SurfacePoint surface;
+    glm::vec3 origin{0.0f};
+    std::uint32_t cameraPoint = 0; // index into X of the point whose ray found it
+    std::uint32_t seed = 0;        // radiance seed
+    glm::vec3 radiance{0.0f};
+    float density = 0.0f;
+    float intensity = 0.0f;        // luminance(radiance) / density
+};
+
+SMCIRSampler::SMCIRSampler(const Scene& scene, const RayScene& rays, const SMCIRParams& params)
+    : mScene(scene), mRays(rays), mParams(params)
+{
+    const SMCIRParams& p = params;
+    require(p.vplCount >= 1, "smcir.vplCount must be >= 1");
+    require(p.maxMoves >= 0, "smcir.maxMoves must be >= 0");
+    require(p.validationRays >= 0, "smcir.validationRays must be >= 0");
+    require(p.validationIterations >= 0, "smcir.validationIterations must be >= 0");
+    require(p.candidateFactor >= 1, "smcir.candidateFactor must be >= 1");
+    require(p.resampleRetries >= 0, "smcir.resampleRetries must be >= 0");
+    require(p.candidateDensityK >= 1, "smcir.candidateDensityK must be >= 1");
+    require(p.radiositySamples >= 1, "smcir.radiositySamples must be >= 1");
+    require(p.radiosityBounces >= 1 && p.radiosityBounces <= 1024, "smcir.radiosityBounces must be in [1, 1024]");
+    require(p.knnRender >= 0, "smcir.knnRender must be >= 0");
+    require(p.strongFraction >= 0.0f && p.strongFraction <= 1.0f, "smcir.strongFraction must be in [0, 1]");
+    require(p.cameraSamplesX >= 1 && p.cameraSamplesY >= 1, "smcir.cameraSamplesX/Y must be >= 1");
+    require(p.warmupIterations >= 0, "smcir.warmupIterations must be >= 0");
+    require(&rays.scene() == &scene, "smcir: the RayScene must be built from the sampler's scene");
+    mRenderK = p.knnRender > 0 ? p.knnRender : computeRenderingK(p.vplCount);
+    mOffset = 1e-4f * rays.sceneScale(); // as the path tracer
+    mSet.slots.assign(static_cast<std::size_t>(p.vplCount), VPL{});
+    mSlots.assign(static_cast<std::size_t>(p.vplCount), SlotState{});
+}
+
+SMCIRSampler::~SMCIRSampler() = default;
+
+void SMCIRSampler::invalidateRadiance()
+{
+    ++mRadianceEpoch;
+}
+
+// --- Alg. 1 line 3: X <- RAYCASTFROMCAMERA() -----------------------------------------------------
+
+void SMCIRSampler::castCameraRays(const Camera& camera, float aspect, std::vector<CameraPoint>& points)
+{
+    // Rays as the rasterizer projects them (the path tracer's CameraRays): through a point of the
+    // image, from the eye, clipped to the near and far planes.
+    const glm::dmat4 worldFromClip =
+        glm::inverse(glm::dmat4(camera.clipFromView(aspect)) * glm::dmat4(camera.viewFromWorld()));
+    const glm::dvec3 eye(camera.position);
+    auto unproject = [&](double x, double y, double z) {
+        const glm::dvec4 p = worldFromClip * glm::dvec4(x, y, z, 1.0);
+        return glm::dvec3(p) / p.w;
+    };
+    const int columns = mParams.cameraSamplesX, rows = mParams.cameraSamplesY;
+    const std::size_t cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+    std::vector<CameraPoint> found(cells);
+    std::vector<char> hitSurface(cells, 0);
+    parallelFor(cells, 64, [&](std::size_t cell) {
+        // A jittered grid: one uniform point per cell, new every frame.
+        Pcg32 rng = stream(mParams.seed, mFrame, kStageCamera, cell);
+        const float jitterX = rng.uniform(), jitterY = rng.uniform();
+        const double x = (static_cast<double>(cell % columns) + jitterX) / columns;
+        const double y = (static_cast<double>(cell / columns) + jitterY) / rows;
+        const double ndcX = 2.0 * x - 1.0, ndcY = 1.0 - 2.0 * y;
+        const glm::dvec3 nearPoint = unproject(ndcX, ndcY, -1.0), farPoint = unproject(ndcX, ndcY, 1.0);
+        const glm::dvec3 direction = glm::normalize(farPoint - eye);
+        Ray ray;
+        ray.origin = camera.position;
+        ray.direction = glm::vec3(direction);
+        ray.tMin = static_cast<float>(std::max(0.0, glm::dot(nearPoint - eye, direction)));
+        ray.tMax = static_cast<float>(glm::dot(farPoint - eye, direction));
+        const Hit hit = mRays.intersect(ray);
+        if (!hit.valid()) return;
+        const glm::vec3 wo = -ray.direction;
+        const SurfacePoint s = surfaceAt(mScene, hit, wo);
+        if (glm::dot(s.geometricNormal, wo) <= 0.0f) return; // the back of a single-sided surface: culled
+        CameraPoint& point = found[cell];
+        point.position = s.position;
+        point.normal = s.geometricNormal;
+        point.origin = s.position + s.geometricNormal * mOffset;
+        hitSurface[cell] = 1;
+    });
+    mRayCount += cells;
+    points.clear();
+    for (std::size_t cell = 0; cell < cells; ++cell)
+        if (hitSurface[cell]) points.push_back(found[cell]);
+}
+
+// --- Alg. 1 line 4: INVALID <- Y \ INDIRECTLYVISIBLEVPLS(X, Y) (3.2.2) ----------------------------
+
+std::vector<char> SMCIRSampler::resolveIndirectVisibility(const Camera& camera, float aspect,
+                                                          const std::vector<CameraPoint>& points)
+{
+    const std::size_t slotCount = mSet.slots.size();
+    std::vector<char> validated(slotCount, 0);
+    std::atomic<std::uint64_t> rays{0};
+
+    // Mail-boxing: a VPL is still indirectly visible if its associated point is still seen by the
+    // camera (in the frustum, facing the eye, unoccluded). The VPL-to-point segment was unoccluded
+    // when they were associated and the geometry does not move.
+    const glm::mat4 clipFromWorld = camera.clipFromView(aspect) * camera.viewFromWorld();
+    parallelFor(slotCount, 64, [&](std::size_t slot) {
+        if (!mSet.slots[slot].valid) return;
+        const CameraPoint& x = mSlots[slot].associated;
+        if (glm::dot(x.normal, camera.position - x.position) <= 0.0f) return;
+        const glm::vec4 clip = clipFromWorld * glm::vec4(x.position, 1.0f);
+        if (!(clip.w > 0.0f) || std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w || std::abs(clip.z) > clip.w)
+            return;
+        rays.fetch_add(1, std::memory_order_relaxed);
+        if (mRays.visible(camera.position, x.origin)) validated[slot] = 1;
+    });
+
+    // Validation rounds: every point of X casts rays towards V randomly chosen still-invalid VPLs;
+    // a VPL that one of them reaches is valid again and associated with that point (Fig. 6 c, d).
+    for (int round = 0; round < mParams.validationIterations && mParams.validationRays > 0 && !points.empty();
+         ++round) {
+        std::vector<std::uint32_t> invalid;
+        for (std::size_t slot = 0; slot < slotCount; ++slot)
+            if (mSet.slots[slot].valid && !validated[slot]) invalid.push_back(static_cast<std::uint32_t>(slot));
+        if (invalid.empty()) break;
+        const auto invalidCount = static_cast<std::uint32_t>(invalid.size());
+        const std::uint32_t chosenPerPoint = std::min(static_cast<std::uint32_t>(mParams.validationRays), invalidCount);
+        std::vector<std::int32_t> success(points.size() * chosenPerPoint, -1);
+        parallelFor(points.size(), 16, [&](std::size_t i) {
+            Pcg32 rng = stream(mParams.seed, mFrame, kStageValidation + static_cast<std::uint64_t>(round), i);
+            // Floyd's algorithm: chosenPerPoint distinct indices of [0, invalidCount).
+            std::uint32_t chosen[1024];
+            std::uint32_t count = 0;
+            for (std::uint32_t j = invalidCount - chosenPerPoint; j < invalidCount; ++j) {
+                const std::uint32_t t = rng.below(j + 1);
+                const bool taken = std::find(chosen, chosen + count, t) != chosen + count;
+                chosen[count++] = taken ? j : t;
+            }
+            const CameraPoint& x = points[i];
+            std::uint64_t cast = 0;
+            for (std::uint32_t j = 0; j < count; ++j) {
+                const std::uint32_t slot = invalid[chosen[j]];
+                const glm::vec3 y = mSet.slots[slot].position;
+                // Only a VPL that emits towards x and lies above x's surface can light x.
+                if (glm::dot(x.normal, y - x.position) <= 0.0f) continue;
+                if (glm::dot(mSet.slots[slot].normal, x.position - y) <= 0.0f) continue;
+                ++cast;
+                if (mRays.visible(x.origin, mSlots[slot].origin))
+                    success[i * chosenPerPoint + j] = static_cast<std::int32_t>(slot);
+            }
+            rays.fetch_add(cast, std::memory_order_relaxed);
+        });
+        // The first success in X order wins: the same association whatever the thread count.
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            for (std::uint32_t j = 0; j < chosenPerPoint; ++j) {
+                const std::int32_t slot = success[i * chosenPerPoint + j];
+                if (slot < 0 || validated[static_cast<std::size_t>(slot)]) continue;
+                validated[static_cast<std::size_t>(slot)] = 1;
+                mSlots[static_cast<std::size_t>(slot)].associated = points[i];
+            }
+        }
+    }
+    mRayCount += rays.load();
+    return validated;
+}
+
+// --- Alg. 1 lines 5-6: candidate rays and weighted resampling (3.2.1) ----------------------------
+
+std::vector<SMCIRSampler::Candidate> SMCIRSampler::sampleCandidates(const std::vector<CameraPoint>& points,
+                                                                    double& samplingMs, double& resamplingMs)
+{
+    const Clock::time_point samplingStart = Clock::now();
+    const std::size_t budget = mSet.slots.size();
+    std::vector<Candidate> candidates;
+    if (points.empty()) {
+        samplingMs = millisecondsSince(samplingStart);
+        resamplingMs = 0.0;
+        return candidates;
+    }
+
+    // Line 5: candidateFactor * I rays, round-robin over X, uniform over the hemisphere of x.
+    const std::size_t rayCount = budget * static_cast<std::size_t>(mParams.candidateFactor);
+    std::vector<Candidate> raw(rayCount);
+    std::vector<char> hitSurface(rayCount, 0);
+    parallelFor(rayCount, 256, [&](std::size_t r) {
+        const std::size_t xIndex = r % points.size();
+        const CameraPoint& x = points[xIndex];
+        Pcg32 rng = stream(mParams.seed, mFrame, kStageCandidateRays, r);
+        const float cosTheta = rng.uniform(); // uniform hemisphere: cos(theta) uniform in [0, 1)
+        const float phi = 2.0f * shared::kPi * rng.uniform();
+        const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+        glm::vec3 t, b;
+        makeBasis(x.normal, t, b);
+        Ray ray;
+        ray.origin = x.origin;
+        ray.direction = glm::normalize(sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * x.normal);
+        const Hit hit = mRays.intersect(ray);
+        if (!hit.valid()) return;
+        const glm::vec3 wo = -ray.direction;
+        const SurfacePoint s = surfaceAt(mScene, hit, wo);
+        if (glm::dot(s.geometricNormal, wo) <= 0.0f) return; // the back of a single-sided surface reflects nothing
+        Candidate& c = raw[r];
+        c.surface = s;
+        c.origin = s.position + s.geometricNormal * mOffset;
+        c.cameraPoint = static_cast<std::uint32_t>(xIndex);
+        hitSurface[r] = 1;
+    });
+    mRayCount += rayCount;
+    std::vector<std::size_t> hits;
+    for (std::size_t r = 0; r < rayCount; ++r)
+        if (hitSurface[r]) hits.push_back(r);
+    samplingMs = millisecondsSince(samplingStart);
+
+    // Line 6: RESAMPLECANDIDATES. Weights 1/p_raw, with p_raw the kNN area density of the raw
+    // points among themselves (self excluded: the (k+1)-th neighbour). The normalisation k/(N pi)
+    // cancels, so the weight is r_k^2.
+    const Clock::time_point resamplingStart = Clock::now();
+    std::vector<std::size_t> selected; // indices into `hits`, ascending
+    if (hits.size() <= budget) {
+        selected.resize(hits.size());
+        std::iota(selected.begin(), selected.end(), std::size_t{0});
+    } else {
+        std::vector<glm::vec3> positions(hits.size());
+        for (std::size_t i = 0; i < hits.size(); ++i)
+            positions[i] = raw[hits[i]].surface.position;
+        const KNNIndex index(positions);
+        const auto k = static_cast<std::size_t>(mParams.candidateDensityK) + 1;
+        std::vector<double> weight(hits.size(), 1.0);
+        if (hits.size() >= k) {
+            parallelFor(hits.size(), 256, [&](std::size_t i) {
+                weight[i] = static_cast<double>(index.kthDistanceSquared(positions[i], k));
+            });
+        }
+        std::vector<double> cdf(hits.size());
+        double total = 0.0;
+        for (std::size_t i = 0; i < hits.size(); ++i) {
+            total += weight[i];
+            cdf[i] = total;
+        }
+        // Without replacement as the paper does it on the GPU: draw the missing number of elements,
+        // keep the new ones, and redraw at most resampleRetries times (duplicates cost a retry).
+        std::vector<char> taken(hits.size(), 0);
+        std::size_t takenCount = 0;
+        for (int round = 0; round <= mParams.resampleRetries && takenCount < budget && total > 0.0; ++round) {
+            const std::size_t draws = budget - takenCount;
+            Pcg32 rng = stream(mParams.seed, mFrame, kStageResample + static_cast<std::uint64_t>(round), 0);
+            for (std::size_t d = 0; d < draws; ++d) {
+                // 53-bit uniform in [0, 1) for the double CDF (two draws, in a fixed order).
+                const std::uint64_t high = rng.next();
+                const std::uint64_t low = rng.next();
+                const double u = static_cast<double>((high << 21u) ^ (low >> 11u)) * 0x1p-53;
+                const double target = u * total;
+                const auto at = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin());
+                const std::size_t i = std::min(at, hits.size() - 1);
+                if (!taken[i]) {
+                    taken[i] = 1;
+                    ++takenCount;
+                }
+            }
+        }
+        for (std::size_t i = 0; i < hits.size(); ++i)
+            if (taken[i]) selected.push_back(i);
+    }
+    candidates.reserve(selected.size());
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+        Candidate c = raw[hits[selected[i]]];
+        // 3.2.3: a seed of its own, kept while it lives as a VPL.
+        c.seed = static_cast<std::uint32_t>(streamKey(mParams.seed, mFrame, kStageRadianceSeed, i));
+        candidates.push_back(c);
+    }
+    mTimes.rawCandidates = static_cast<int>(hits.size());
+    resamplingMs = millisecondsSince(resamplingStart);
+    return candidates;
+}
+
+// --- Alg. 1 lines 7 and 18: radiance (3.2.3) ----------------------------------------------------
+
+void SMCIRSampler::estimateCandidateRadiance(std::vector<Candidate>& candidates)
+{
+    std::vector<std::uint64_t> rays(candidates.size(), 0);
+    parallelFor(candidates.size(), 4, [&](std::size_t i) {
+        candidates[i].radiance =
+            mEstimator->estimate(candidates[i].surface, mParams.radiositySamples, candidates[i].seed, &rays[i]);
+    });
+    mRayCount += std::accumulate(rays.begin(), rays.end(), std::uint64_t{0});
+    mEstimates += static_cast<int>(candidates.size());
+}
+
+void SMCIRSampler::estimateStaleRadiance()
+{
+    std::vector<std::uint32_t> stale;
+    for (std::size_t slot = 0; slot < mSlots.size(); ++slot)
+        if (mSet.slots[slot].valid && mSlots[slot].radianceEpoch != mRadianceEpoch)
+            stale.push_back(static_cast<std::uint32_t>(slot));
+    std::vector<std::uint64_t> rays(stale.size(), 0);
+    parallelFor(stale.size(), 4, [&](std::size_t i) {
+        const std::uint32_t slot = stale[i];
+        mSet.slots[slot].radiance =
+            mEstimator->estimate(mSlots[slot].surface, mParams.radiositySamples, mSlots[slot].radianceSeed, &rays[i]);
+        mSlots[slot].radianceEpoch = mRadianceEpoch;
+    });
+    mRayCount += std::accumulate(rays.begin(), rays.end(), std::uint64_t{0});
+    mEstimates += static_cast<int>(stale.size());
+}
+
+// --- Alg. 1 lines 8 and 19: kNN densities (3.2.4, eq. 7) ------------------------------------------
+
+void SMCIRSampler::estimateCandidateDensities(std::vector<Candidate>& candidates)
+{
+    // k = 1 against the current VPLs; candidates are not in Y, so nothing is excluded.
+    std::vector<glm::vec3> positions;
+    for (const VPL& vpl : mSet.slots)
+        if (vpl.valid) positions.push_back(vpl.position);
+    const KNNIndex index(positions);
+    parallelFor(candidates.size(), 64, [&](std::size_t i) {
+        Candidate& c = candidates[i];
+        c.density = estimateKNNDensity(1, positions.size(), index.kthDistanceSquared(c.surface.position, 1));
+        c.intensity = intensityOf(c.radiance, c.density);
+    });
+}
+
+void SMCIRSampler::estimateRenderingDensities()
+{
+    std::vector<std::uint32_t> slots;
+    std::vector<glm::vec3> positions;
+    for (std::size_t slot = 0; slot < mSet.slots.size(); ++slot) {
+        if (!mSet.slots[slot].valid) continue;
+        slots.push_back(static_cast<std::uint32_t>(slot));
+        positions.push_back(mSet.slots[slot].position);
+    }
+    const KNNIndex index(positions);
+    // k of eq. (8) (or knnRender), among the other VPLs: the (k+1)-th neighbour of the whole set.
+    const std::size_t n = positions.size();
+    const std::size_t k = n > 1 ? std::min(static_cast<std::size_t>(mRenderK), n - 1) : 0;
+    parallelFor(slots.size(), 64, [&](std::size_t i) {
+        mSet.slots[slots[i]].density = k > 0 ? estimateKNNDensity(k, n, index.kthDistanceSquared(positions[i], k + 1)) : 0.0f;
+    });
+}
+
+// --- Slots ---------------------------------------------------------------------------------------
+
+void SMCIRSampler::assignSlot(std::uint32_t slot, const Candidate& candidate, const std::vector<CameraPoint>& points)
+{
+    VPL& vpl = mSet.slots[slot];
+    vpl.position = candidate.surface.position;
+    vpl.normal = candidate.surface.normal;
+    vpl.radiance = candidate.radiance;
+    vpl.density = candidate.density; // replaced by line 19 before publication
+    vpl.valid = true;
+    SlotState& state = mSlots[slot];
+    state.surface = candidate.surface;
+    state.origin = candidate.origin;
+    state.associated = points[candidate.cameraPoint]; // 3.2.2: the point it was generated from
+    state.radianceSeed = candidate.seed;
+    state.radianceEpoch = mRadianceEpoch;
+}
+
+void SMCIRSampler::clearSlot(std::uint32_t slot)
+{
+    mSet.slots[slot] = VPL{};
+    mSlots[slot] = SlotState{};
+}
+
+// --- Alg. 1 line 1 and the frame loop --------------------------------------------------------------
+
+void SMCIRSampler::beginFrame()
+{
+    mTimes = SMCIRStageTimes{};
+    mRayCount = 0;
+    mEstimates = 0;
+}
+
+void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::function<void(int, int)>& progress)
+{
+    require(aspect > 0.0f && std::isfinite(aspect), "smcir: aspect must be > 0");
+    const Clock::time_point start = Clock::now();
+    beginFrame();
+    mFrame = 0;
+    for (std::uint32_t slot = 0; slot < mSet.slots.size(); ++slot)
+        clearSlot(slot);
+
+    // Line 1: INITIALIZEVPLS, sampled "identically to how we generate candidate VPLs" (3.2).
+    Clock::time_point t = Clock::now();
+    std::vector<CameraPoint> points;
+    castCameraRays(camera, aspect, points);
+    mTimes.cameraRays = millisecondsSince(t);
+    mTimes.cameraPoints = static_cast<int>(points.size());
+    std::vector<Candidate> candidates =
+        sampleCandidates(points, mTimes.candidateSampling, mTimes.candidateResampling);
+    mTimes.candidates = static_cast<int>(candidates.size());
+    t = Clock::now();
+    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, mParams.radiosityBounces);
+    estimateCandidateRadiance(candidates);
+    mTimes.radiosity = millisecondsSince(t);
+    for (std::size_t i = 0; i < candidates.size() && i < mSet.slots.size(); ++i)
+        assignSlot(static_cast<std::uint32_t>(i), candidates[i], points);
+    t = Clock::now();
+    estimateRenderingDensities();
+    mTimes.knn = millisecondsSince(t);
+    mInitialized = true;
+    mTimes.rays = mRayCount;
+    mTimes.radianceEstimates = mEstimates;
+    mTimes.total = millisecondsSince(start);
+
+    // "we run 100 iterations of the algorithm before rendering the first frame" (3.2).
+    for (int i = 0; i < mParams.warmupIterations; ++i) {
+        step(camera, aspect);
+        if (progress) progress(i + 1, mParams.warmupIterations);
+    }
+    // The renderer has seen nothing yet: every slot is new to it.
+    mSet.changed.resize(mSet.slots.size());
+    std::iota(mSet.changed.begin(), mSet.changed.end(), std::uint32_t{0});
+    mTimes.moved = static_cast<int>(mSet.changed.size());
+    ++mSet.generation;
+}
+
+void SMCIRSampler::step(const Camera& camera, float aspect)
+{
+    require(mInitialized, "smcir: step() before initialize()");
+    require(aspect > 0.0f && std::isfinite(aspect), "smcir: aspect must be > 0");
+    const Clock::time_point start = Clock::now();
+    beginFrame();
+    ++mFrame;
+    const std::size_t slotCount = mSet.slots.size();
+
+    // Line 3: X <- RAYCASTFROMCAMERA().
+    Clock::time_point t = Clock::now();
+    std::vector<CameraPoint> points;
+    castCameraRays(camera, aspect, points);
+    mTimes.cameraRays = millisecondsSince(t);
+    mTimes.cameraPoints = static_cast<int>(points.size());
+
+    // Line 4: INVALID <- Y \ INDIRECTLYVISIBLEVPLS(X, Y).
+    t = Clock::now();
+    const std::vector<char> validated = resolveIndirectVisibility(camera, aspect, points);
+    mTimes.indirectVisibility = millisecondsSince(t);
+
+    // Lines 5-6: Y^ <- RESAMPLECANDIDATES(RAYCASTFROMPOINTS(X)).
+    std::vector<Candidate> candidates =
+        sampleCandidates(points, mTimes.candidateSampling, mTimes.candidateResampling);
+    mTimes.candidates = static_cast<int>(candidates.size());
+
+    // Line 7: ESTIMATERADIOSITIES(Y^). The estimator reads the lights as they are now.
+    t = Clock::now();
+    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, mParams.radiosityBounces);
+    estimateCandidateRadiance(candidates);
+    mTimes.radiosity = millisecondsSince(t);
+
+    // Line 8: ESTIMATEPROBABILITYDENSITIES(Y^), k = 1 against the current Y.
+    t = Clock::now();
+    estimateCandidateDensities(candidates);
+    mTimes.knn = millisecondsSince(t);
+
+    t = Clock::now();
+    // Intensities of the current VPLs: last frame's radiance and density, not re-estimated yet (3.2).
+    std::vector<float> intensity(slotCount, 0.0f);
+    std::vector<float> sorted;
+    std::size_t invalidCount = 0;
+    for (std::size_t slot = 0; slot < slotCount; ++slot) {
+        const VPL& vpl = mSet.slots[slot];
+        if (!vpl.valid) continue;
+        intensity[slot] = intensityOf(vpl.radiance, vpl.density);
+        sorted.push_back(intensity[slot]);
+        if (!validated[slot]) ++invalidCount;
+    }
+    mTimes.invalidated = static_cast<int>(invalidCount);
+    std::sort(sorted.begin(), sorted.end());
+
+    // Line 9, eq. (9): M_min = min(M_max, M_strong); M_strong counts the candidates stronger than
+    // strongFraction of the current VPLs, i.e. above the ceil(fraction n)-th smallest intensity.
+    const auto weaker = static_cast<std::size_t>(std::ceil(static_cast<double>(mParams.strongFraction) * sorted.size()));
+    const float threshold = weaker == 0 ? -std::numeric_limits<float>::infinity() : sorted[weaker - 1];
+    std::size_t strong = 0;
+    for (const Candidate& c : candidates)
+        if (c.intensity > threshold) ++strong;
+    mTimes.strongCandidates = static_cast<int>(strong);
+    const std::size_t maxMoves = static_cast<std::size_t>(mParams.maxMoves);
+    const std::size_t minMoves = std::min(maxMoves, strong);
+
+    // Slots to free, in order: empty slots (the set is short of I), INVALID from the weakest up,
+    // and lines 10-12: the weakest valid VPLs while |INVALID| < M_min.
+    auto weakerFirst = [&](std::uint32_t a, std::uint32_t b) {
+        return intensity[a] != intensity[b] ? intensity[a] < intensity[b] : a < b;
+    };
+    std::vector<std::uint32_t> empty, invalid, valid;
+    for (std::uint32_t slot = 0; slot < slotCount; ++slot) {
+        if (!mSet.slots[slot].valid) empty.push_back(slot);
+        else if (!validated[slot]) invalid.push_back(slot);
+        else valid.push_back(slot);
+    }
+    std::sort(invalid.begin(), invalid.end(), weakerFirst);
+    std::vector<std::uint32_t> freed = empty;
+    freed.insert(freed.end(), invalid.begin(), invalid.end());
+    if (invalid.size() < minMoves) {
+        const std::size_t weakest = minMoves - invalid.size();
+        std::partial_sort(valid.begin(), valid.begin() + static_cast<std::ptrdiff_t>(std::min(weakest, valid.size())),
+                          valid.end(), weakerFirst);
+        freed.insert(freed.end(), valid.begin(), valid.begin() + static_cast<std::ptrdiff_t>(std::min(weakest, valid.size())));
+    }
+    // Line 13: Y <- Y \ CLAMPSIZE(INVALID, M_max).
+    if (freed.size() > maxMoves) freed.resize(maxMoves);
+
+    // Lines 14-17: fill the freed slots with the strongest candidates.
+    std::vector<std::uint32_t> order(candidates.size());
+    std::iota(order.begin(), order.end(), std::uint32_t{0});
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return candidates[a].intensity != candidates[b].intensity ? candidates[a].intensity > candidates[b].intensity
+                                                                  : a < b;
+    });
+    std::vector<std::uint32_t> changed;
+    std::size_t next = 0;
+    for (std::uint32_t slot : freed) {
+        if (next < order.size()) {
+            assignSlot(slot, candidates[order[next++]], points);
+            changed.push_back(slot);
+        } else if (mSet.slots[slot].valid) {
+            clearSlot(slot); // no candidate left: the VPL is removed all the same
+            changed.push_back(slot);
+        }
+    }
+    std::sort(changed.begin(), changed.end());
+    mTimes.selection = millisecondsSince(t);
+
+    // Line 18: ESTIMATERADIOSITIES(Y), only where the cache is stale.
+    t = Clock::now();
+    estimateStaleRadiance();
+    mTimes.radiosity += millisecondsSince(t);
+
+    // Line 19: ESTIMATEPROBABILITYDENSITIES(Y) with k of eq. (8).
+    t = Clock::now();
+    estimateRenderingDensities();
+    mTimes.knn += millisecondsSince(t);
+
+    mSet.changed = std::move(changed);
+    ++mSet.generation;
+    mTimes.moved = static_cast<int>(mSet.changed.size());
+    mTimes.rays = mRayCount;
+    mTimes.radianceEstimates = mEstimates;
+    mTimes.total = millisecondsSince(start);
+}
+
+} // namespace vplgi

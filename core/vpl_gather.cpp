@@ -1,0 +1,67 @@
+#include "vpl_gather.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace vplgi {
+
+glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
+                     const VPLGatherParams& params)
+{
+    if (vpls.slots.empty()) return glm::vec3(0.0f);
+    const float offset = 1e-4f * rays.sceneScale();
+    const glm::vec3 origin = point.position + point.geometricNormal * offset;
+    glm::vec3 sum(0.0f);
+    for (const VPL& vpl : vpls.slots) {
+        if (!vpl.valid || !(vpl.density > 0.0f)) continue;
+        const glm::vec3 toVPL = vpl.position - point.position;
+        const float distance2 = glm::dot(toVPL, toVPL);
+        if (!(distance2 > 0.0f)) continue;
+        const glm::vec3 wi = toVPL / std::sqrt(distance2);
+        const float cosX = glm::dot(point.normal, wi);
+        const float cosY = -glm::dot(vpl.normal, wi);
+        if (cosX <= 0.0f || cosY <= 0.0f) continue;
+        float geometry = cosX * cosY / distance2;
+        if (params.clampGeometry > 0.0f) geometry = std::min(geometry, params.clampGeometry);
+        // Visibility between the shading point and the VPL, both ends lifted off their surfaces.
+        if (!rays.visible(origin, vpl.position + vpl.normal * offset)) continue;
+        sum += shared::evaluateBRDF(point.material, point.normal, wo, wi) * geometry * vpl.intensity();
+    }
+    return sum / static_cast<float>(vpls.slots.size());
+}
+
+ImageRGBA32F renderVPLGather(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
+                             const VPLSet& vpls, const VPLGatherParams& params)
+{
+    ImageRGBA32F image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(static_cast<std::size_t>(width) * height * 4, 0.0f);
+    const glm::mat4 worldFromClip =
+        glm::inverse(camera.clipFromView(static_cast<float>(width) / static_cast<float>(height)) * camera.viewFromWorld());
+    tbb::parallel_for(0, height, [&](int y) {
+        for (int x = 0; x < width; ++x) {
+            // The pixel centre, as the rasterizer samples it.
+            const glm::vec2 ndc((x + 0.5f) / width * 2.0f - 1.0f, 1.0f - (y + 0.5f) / height * 2.0f);
+            const glm::vec4 nearPoint = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
+            const glm::vec4 farPoint = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
+            Ray ray;
+            ray.origin = glm::vec3(nearPoint) / nearPoint.w;
+            ray.direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - ray.origin);
+            float* out = image.at(x, y);
+            out[3] = 1.0f;
+            const Hit hit = rays.intersect(ray);
+            if (!hit.valid()) continue;
+            const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
+            const glm::vec3 value = gatherVPLs(rays, vpls, s, -ray.direction, params);
+            out[0] = value.r;
+            out[1] = value.g;
+            out[2] = value.b;
+        }
+    });
+    return image;
+}
+
+} // namespace vplgi

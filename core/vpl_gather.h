@@ -1,0 +1,33 @@
+// The CPU renderer of a VPL set (SMCIR Fig. 8, "All VPLs - ray tracing"): every pixel gathers every
+// VPL with Embree visibility and the same geometry-term clamping the GPU uses, so the quality of a
+// VPL distribution is measured apart from shadow-map artefacts. Technique `smcir-rt` and the tests
+// use it.
+//
+//   L_ind(x -> eye) = (1/I) sum_i f(x, w_o, w_i) min(G(x <-> y_i), G_max) V(x, y_i) I(y_i)   (SMCIR eq. 5/6)
+//
+// with I the VPL budget (the slot count), f the shared BRDF (glsl/shared/brdf.h) and I(y) = L(y)/p(y).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "image_io.h"
+#include "ray_scene.h"
+#include "surface.h"
+#include "vpl.h"
+
+namespace vplgi {
+
+struct VPLGatherParams {
+    float clampGeometry = 0.0f; // G_max [1/m^2]; 0 = no clamping
+};
+
+// Indirect radiance reflected at `point` towards `wo` (unit, away from the surface).
+glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
+                     const VPLGatherParams& params);
+
+// The indirect image of `camera` (pixel centres, rows top to bottom); pixels that see nothing are 0.
+// Multi-threaded (TBB), deterministic.
+ImageRGBA32F renderVPLGather(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
+                             const VPLSet& vpls, const VPLGatherParams& params);
+
+} // namespace vplgi

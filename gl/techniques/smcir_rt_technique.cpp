@@ -1,0 +1,73 @@
+#include "smcir_rt_technique.h"
+
+#include <chrono>
+
+#include "core/params.h"
+
+namespace vplgi {
+
+SMCIRRayTracedTechnique::SMCIRRayTracedTechnique() = default;
+
+SMCIRRayTracedTechnique::~SMCIRRayTracedTechnique()
+{
+    mWorker.reset(); // joins before the sampler and the Embree scene go away
+}
+
+void SMCIRRayTracedTechnique::visitParams(ParamVisitor& v)
+{
+    mParams.visitParams(v);
+    v.field("smcir.clampDistance", mClampDistance, 0.0f, 1.0f,
+            "VPL clamping: G is capped at 1/d^2 with d this fraction of the scene diagonal (0 = no clamping)");
+}
+
+void SMCIRRayTracedTechnique::setScene(const SceneContext& context)
+{
+    mWorker.reset();
+    mScene = &context.scene;
+    mRays = std::make_unique<RayScene>(context.scene);
+    mSampler = std::make_unique<SMCIRSampler>(context.scene, *mRays, mParams);
+    mInitialized = false;
+}
+
+void SMCIRRayTracedTechnique::update(const FrameContext& frame)
+{
+    if (!mInitialized) {
+        mSampler->initialize(frame.camera); // Alg. 1 line 1 and the warm-up iterations
+        mWorker = std::make_unique<SMCIRWorker>(*mSampler);
+        mInitialized = true;
+    } else {
+        mWorker->wait();
+    }
+    mRendered = mSampler->vpls();
+    mTimes = mSampler->lastTimes();
+    mWorker->submit(frame.camera, frame.lightsChanged);
+}
+
+void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, const IndirectTarget& target)
+{
+    const auto start = std::chrono::steady_clock::now();
+    VPLGatherParams gather;
+    if (mClampDistance > 0.0f) {
+        const float d = mClampDistance * mRays->sceneScale();
+        gather.clampGeometry = 1.0f / (d * d);
+    }
+    const ImageRGBA32F image = renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, mRendered, gather);
+    // GL rows run bottom to top.
+    const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
+    std::vector<float> flipped(image.pixels.size());
+    for (int y = 0; y < frame.height; ++y)
+        std::copy_n(&image.pixels[static_cast<std::size_t>(frame.height - 1 - y) * row], row, &flipped[y * row]);
+    glTextureSubImage2D(target.radiance.id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
+    mGatherMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats() const
+{
+    return {{"vpls", static_cast<double>(mRendered.validCount())},
+            {"vplsChanged", static_cast<double>(mRendered.changed.size())},
+            {"sampler total ms", mTimes.total},
+            {"sampler rays", static_cast<double>(mTimes.rays)},
+            {"cpu gather ms", mGatherMilliseconds}};
+}
+
+} // namespace vplgi
