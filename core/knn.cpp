@@ -7,6 +7,8 @@
 #include <utility>
 
 #include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace vplgi {
 
@@ -92,6 +94,23 @@ float KNNIndex::kthDistanceSquared(const glm::vec3& query, std::size_t k) const
     }
     const std::size_t found = nearest(query, k, indices, distances);
     return found == k ? distances[k - 1] : std::numeric_limits<float>::infinity();
+}
+
+std::vector<float> KNNIndex::neighbourDistancesSquared(std::size_t k) const
+{
+    const std::size_t n = size();
+    std::vector<float> result(n, std::numeric_limits<float>::infinity());
+    if (k == 0 || n <= k) return result;
+    // The tree's permutation of the points (public in nanoflann 1.4.3): leaf by leaf.
+    const std::vector<std::uint32_t>& order = mImpl->tree.vAcc;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const std::uint32_t point = order[i];
+            // A point is its own nearest neighbour (distance 0): the k-th other is the (k+1)-th.
+            result[point] = kthDistanceSquared(mImpl->cloud.points[point], k + 1);
+        }
+    });
+    return result;
 }
 
 std::size_t bruteForceNearest(const std::vector<glm::vec3>& points, const glm::vec3& query, std::size_t k,

@@ -287,6 +287,9 @@ std::vector<char> SMCIRSampler::resolveIndirectVisibility(const Camera& camera, 
         if (mRays.visible(camera.position, x.origin)) validated[slot] = 1;
     });
 
+    for (std::size_t slot = 0; slot < slotCount; ++slot)
+        if (mSet.slots[slot].valid && !validated[slot]) ++mTimes.mailboxMisses;
+
     // Validation rounds: every point of X casts rays towards V randomly chosen still-invalid VPLs;
     // a VPL that one of them reaches is valid again and associated with that point (Fig. 6 c, d).
     for (int round = 0; round < mParams.validationIterations && mParams.validationRays > 0 && !points.empty();
@@ -395,13 +398,12 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::sampleCandidates(const std::v
         std::vector<glm::vec3> positions(hits.size());
         for (std::size_t i = 0; i < hits.size(); ++i)
             positions[i] = raw[hits[i]].surface.position;
-        const KNNIndex index(positions);
-        const auto k = static_cast<std::size_t>(mParams.candidateDensityK) + 1;
+        const KNNIndex index(std::move(positions));
+        const auto k = static_cast<std::size_t>(mParams.candidateDensityK);
         std::vector<double> weight(hits.size(), 1.0);
-        if (hits.size() >= k) {
-            parallelFor(hits.size(), 256, [&](std::size_t i) {
-                weight[i] = static_cast<double>(index.kthDistanceSquared(positions[i], k));
-            });
+        if (hits.size() > k) {
+            const std::vector<float> r2 = index.neighbourDistancesSquared(k);
+            std::copy(r2.begin(), r2.end(), weight.begin());
         }
         std::vector<double> cdf(hits.size());
         double total = 0.0;
@@ -500,13 +502,13 @@ void SMCIRSampler::estimateRenderingDensities()
         slots.push_back(static_cast<std::uint32_t>(slot));
         positions.push_back(mSet.slots[slot].position);
     }
-    const KNNIndex index(positions);
-    // k of eq. (8) (or knnRender), among the other VPLs: the (k+1)-th neighbour of the whole set.
+    // k of eq. (8) (or knnRender), among the other VPLs.
     const std::size_t n = positions.size();
+    const KNNIndex index(std::move(positions));
     const std::size_t k = n > 1 ? std::min(static_cast<std::size_t>(mRenderK), n - 1) : 0;
-    parallelFor(slots.size(), 64, [&](std::size_t i) {
-        mSet.slots[slots[i]].density = k > 0 ? estimateKNNDensity(k, n, index.kthDistanceSquared(positions[i], k + 1)) : 0.0f;
-    });
+    const std::vector<float> r2 = index.neighbourDistancesSquared(k);
+    for (std::size_t i = 0; i < slots.size(); ++i)
+        mSet.slots[slots[i]].density = k > 0 ? estimateKNNDensity(k, n, r2[i]) : 0.0f;
 }
 
 // --- Slots ---------------------------------------------------------------------------------------

@@ -16,12 +16,13 @@ SMCIRWorker::~SMCIRWorker()
     mThread.join();
 }
 
-void SMCIRWorker::submit(const Camera& camera, bool lightsChanged)
+void SMCIRWorker::submit(const Camera& camera, float aspect, bool lightsChanged)
 {
     wait();
     {
         std::lock_guard<std::mutex> lock(mMutex);
         mJob = camera;
+        mAspect = aspect;
         mInvalidate = lightsChanged;
         mBusy = true;
     }
@@ -43,6 +44,7 @@ void SMCIRWorker::run()
 {
     for (;;) {
         Camera camera;
+        float aspect = 1.0f;
         bool invalidate = false;
         {
             std::unique_lock<std::mutex> lock(mMutex);
@@ -50,11 +52,12 @@ void SMCIRWorker::run()
             if (mStop) return;
             camera = *mJob;
             invalidate = mInvalidate;
+            aspect = mAspect;
             mJob.reset();
         }
         try {
             if (invalidate) mSampler.invalidateRadiance();
-            mSampler.step(camera);
+            mSampler.step(camera, aspect);
         } catch (...) {
             std::lock_guard<std::mutex> lock(mMutex);
             mError = std::current_exception();

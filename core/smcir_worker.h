@@ -24,7 +24,7 @@ public:
 
     // Starts one step for `camera` (waits for the previous one first). With `lightsChanged` the
     // sampler re-estimates every VPL's radiance in that step.
-    void submit(const Camera& camera, bool lightsChanged);
+    void submit(const Camera& camera, float aspect, bool lightsChanged);
     // Blocks until no step is running; rethrows a worker exception.
     void wait();
 
@@ -34,6 +34,7 @@ private:
     std::mutex mMutex;
     std::condition_variable mCondition;
     std::optional<Camera> mJob;
+    float mAspect = 1.0f;
     bool mInvalidate = false;
     bool mBusy = false;
     bool mStop = false;

@@ -31,8 +31,9 @@ void SMCIRRayTracedTechnique::setScene(const SceneContext& context)
 
 void SMCIRRayTracedTechnique::update(const FrameContext& frame)
 {
+    const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
     if (!mInitialized) {
-        mSampler->initialize(frame.camera); // Alg. 1 line 1 and the warm-up iterations
+        mSampler->initialize(frame.camera, aspect); // Alg. 1 line 1 and the warm-up iterations
         mWorker = std::make_unique<SMCIRWorker>(*mSampler);
         mInitialized = true;
     } else {
@@ -40,7 +41,7 @@ void SMCIRRayTracedTechnique::update(const FrameContext& frame)
     }
     mRendered = mSampler->vpls();
     mTimes = mSampler->lastTimes();
-    mWorker->submit(frame.camera, frame.lightsChanged);
+    mWorker->submit(frame.camera, aspect, frame.lightsChanged);
 }
 
 void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, const IndirectTarget& target)

@@ -2,17 +2,19 @@
 
 #include "core/error.h"
 #include "direct_technique.h"
+#include "smcir_rt_technique.h"
 
 namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct"};
+    return {"direct", "smcir-rt"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
 {
     if (name == "direct") return std::make_unique<DirectTechnique>();
+    if (name == "smcir-rt") return std::make_unique<SMCIRRayTracedTechnique>();
     std::string known;
     for (const std::string& n : techniqueNames()) known += (known.empty() ? "" : ", ") + n;
     throw Error("unknown technique \"" + std::string(name) + "\" (known: " + known + ")");

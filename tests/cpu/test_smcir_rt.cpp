@@ -25,23 +25,32 @@ double meanLuminance(const ImageRGBA32F& image)
 
 } // namespace
 
-TEST_CASE("smcir-rt on the furnace converges to rho * L_all without clamping", "[smcir][furnace]")
+TEST_CASE("smcir-rt on the furnace converges to rho * L_all as I grows (no clamping)", "[smcir][furnace]")
 {
+    // SMCIR is consistent, not unbiased: at finite I the kNN density of its blue-noise VPL set
+    // (k from eq. 8) overestimates 1/p, and ranking VPLs by their frozen radiance estimates keeps the
+    // high ones (see core/smcir_sampler.h). Both shrink as I (and with it k) grows.
     FurnaceParams furnace;
     Scene scene = makeFurnace(furnace);
     RayScene rays(scene);
-    SMCIRParams params;
-    params.vplCount = 512;
-    params.radiosityBounces = 40; // the furnace's series: 0.5^40 is negligible
-    params.radiositySamples = 64;
-    params.warmupIterations = 10;
-    SMCIRSampler sampler(scene, rays, params);
-    sampler.initialize(scene.cameras[0]);
-    for (int i = 0; i < 3; ++i) sampler.step(scene.cameras[0]);
-    const ImageRGBA32F image = renderVPLGather(scene, rays, scene.cameras[0], 16, 12, sampler.vpls(), VPLGatherParams{});
     const double expected = furnace.albedo * furnaceRadianceAll(furnace); // indirect = rho * L_all
-    INFO("mean " << meanLuminance(image) << " expected " << expected);
-    CHECK(meanLuminance(image) == Approx(expected).epsilon(0.03));
+    auto relativeError = [&](int vplCount) {
+        SMCIRParams params;
+        params.vplCount = vplCount;
+        params.radiosityBounces = 40; // the furnace's series: 0.5^40 is negligible
+        params.radiositySamples = 64;
+        params.warmupIterations = 10;
+        SMCIRSampler sampler(scene, rays, params);
+        sampler.initialize(scene.cameras[0]);
+        const ImageRGBA32F image =
+            renderVPLGather(scene, rays, scene.cameras[0], 12, 8, sampler.vpls(), VPLGatherParams{});
+        return meanLuminance(image) / expected - 1.0;
+    };
+    const double small = relativeError(256);
+    const double large = relativeError(4096);
+    INFO("relative error of the indirect radiance: I = 256: " << small << ", I = 4096: " << large);
+    CHECK(std::abs(large) < std::abs(small));
+    CHECK(std::abs(large) < 0.1);
 }
 
 TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect image as I grows", "[smcir][cornell]")
@@ -56,6 +65,7 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     PathTracerParams reference;
     reference.mode = PathTracerParams::Mode::Clamped;
     reference.clampGeometry = gMax;
+    reference.maxDepth = 4; // reflection at the primary hit + the sampler's 3 radiosity bounces
     reference.spp = 2048;
     reference.jitterPixels = false;
     const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
@@ -77,5 +87,5 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     INFO("I = 8192: rmse " << large.rmse << ", |E| " << large.meanAbsToneMapped << ", bias " << large.meanRelativeLuminance);
     CHECK(large.rmse < small.rmse);
     CHECK(large.meanAbsToneMapped < small.meanAbsToneMapped);
-    CHECK(std::abs(large.meanRelativeLuminance) < 0.1);
+    CHECK(std::abs(large.meanRelativeLuminance) < 0.05);
 }

@@ -1,0 +1,647 @@
+// The SMCIR VPL sampler (core/smcir_sampler.h, Algorithm 1) and the reflected-radiance estimator it
+// uses (core/path_tracer.h): closed forms in the furnace, exact indirect visibility in sealed rooms,
+// the M_max bound and stable slots, convergence, caching and determinism.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <vector>
+
+#include <tbb/global_control.h>
+
+#include "core/builtin_scenes.h"
+#include "core/error.h"
+#include "core/params.h"
+#include "core/path_tracer.h"
+#include "core/ray_scene.h"
+#include "core/smcir_sampler.h"
+#include "core/surface.h"
+
+using namespace vplgi;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+float luminance(const glm::vec3& c)
+{
+    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+// Coefficient of variation of the VPL intensities' luminances, L/p (eq. 6).
+double intensityCoV(const VPLSet& set)
+{
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (const VPL& v : set.slots) {
+        if (!v.valid) continue;
+        const double i = luminance(v.intensity());
+        sum += i;
+        sum2 += i * i;
+        ++n;
+    }
+    const double mean = sum / n;
+    return std::sqrt(std::max(0.0, sum2 / n - mean * mean)) / mean;
+}
+
+bool sameVPL(const VPL& a, const VPL& b)
+{
+    return a.valid == b.valid && a.position == b.position && a.normal == b.normal && a.radiance == b.radiance &&
+           a.density == b.density;
+}
+
+bool identicalSets(const VPLSet& a, const VPLSet& b)
+{
+    if (a.slots.size() != b.slots.size() || a.changed != b.changed) return false;
+    for (std::size_t i = 0; i < a.slots.size(); ++i)
+        if (!sameVPL(a.slots[i], b.slots[i])) return false;
+    return true;
+}
+
+// The six faces of the box [lower, upper] as cells x cells quads each, facing out (or in), one
+// Lambertian material. Vertex normals and counter-clockwise winding on the facing side.
+void addBoxFaces(Mesh& mesh, const glm::vec3& lower, const glm::vec3& upper, bool inward, int cells)
+{
+    for (int axis = 0; axis < 3; ++axis) {
+        for (int side = 0; side < 2; ++side) {
+            glm::vec3 normal(0.0f);
+            normal[axis] = (side == 1 ? 1.0f : -1.0f) * (inward ? -1.0f : 1.0f);
+            glm::vec3 corner = lower;
+            corner[axis] = side == 1 ? upper[axis] : lower[axis];
+            glm::vec3 edgeU(0.0f), edgeV(0.0f);
+            edgeU[(axis + 1) % 3] = upper[(axis + 1) % 3] - lower[(axis + 1) % 3];
+            edgeV[(axis + 2) % 3] = upper[(axis + 2) % 3] - lower[(axis + 2) % 3];
+            if (glm::dot(glm::cross(edgeU, edgeV), normal) < 0.0f) std::swap(edgeU, edgeV);
+            const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+            for (int j = 0; j <= cells; ++j) {
+                for (int i = 0; i <= cells; ++i) {
+                    Vertex v;
+                    v.position = corner + edgeU * (float(i) / cells) + edgeV * (float(j) / cells);
+                    v.normal = normal;
+                    mesh.vertices.push_back(v);
+                }
+            }
+            for (int j = 0; j < cells; ++j) {
+                for (int i = 0; i < cells; ++i) {
+                    const std::uint32_t a = base + j * (cells + 1) + i, b = a + 1, c = a + (cells + 1), d = c + 1;
+                    mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+                }
+            }
+        }
+    }
+}
+
+Light pointLight(const glm::vec3& position, float intensity)
+{
+    Light light;
+    light.type = LightType::Point;
+    light.position = position;
+    light.intensity = intensity;
+    return light;
+}
+
+Camera lookAt(const glm::vec3& position, const glm::vec3& target)
+{
+    Camera camera;
+    camera.position = position;
+    camera.target = target;
+    camera.fovY = 1.0f;
+    camera.zNear = 0.05f;
+    camera.zFar = 100.0f;
+    return camera;
+}
+
+// Two closed rooms with no opening between them: A = [-6, -0.5] x [0, 3] x [-3, 3] and
+// B = [0.5, 6] x [0, 3] x [-3, 3] (walls facing inwards), and inside B a sealed solid box C
+// (outer faces out, inner faces in, walls 0.1 m thick) floating above the floor. One light in each
+// room and a bright one inside C. Nothing in A can see B, and nothing outside C can see into it.
+struct SealedRooms {
+    Scene scene;
+    glm::vec3 roomALower{-6.0f, 0.0f, -3.0f}, roomAUpper{-0.5f, 3.0f, 3.0f};
+    glm::vec3 roomBLower{0.5f, 0.0f, -3.0f}, roomBUpper{6.0f, 3.0f, 3.0f};
+    glm::vec3 boxLower{2.5f, 0.6f, -0.8f}, boxUpper{4.1f, 2.0f, 0.8f}; // C's outer faces
+    Camera inA, inB;
+
+    SealedRooms()
+    {
+        scene.name = "sealed rooms";
+        Material wall;
+        wall.baseColor = glm::vec4(0.7f, 0.7f, 0.7f, 1.0f);
+        wall.metallic = 0.0f;
+        wall.roughness = 1.0f;
+        wall.specular = 0.0f;
+        scene.materials.push_back(wall);
+        Mesh mesh;
+        mesh.material = 0;
+        addBoxFaces(mesh, roomALower, roomAUpper, true, 8);
+        addBoxFaces(mesh, roomBLower, roomBUpper, true, 8);
+        addBoxFaces(mesh, boxLower, boxUpper, false, 4);
+        addBoxFaces(mesh, boxLower + glm::vec3(0.1f), boxUpper - glm::vec3(0.1f), true, 4);
+        scene.meshes.push_back(mesh);
+        scene.instances.push_back(Instance{});
+        scene.lights.push_back(pointLight({-3.0f, 2.5f, 1.0f}, 10.0f));
+        scene.lights.push_back(pointLight({1.5f, 2.6f, -2.0f}, 10.0f));
+        scene.lights.push_back(pointLight(0.5f * (boxLower + boxUpper), 200.0f)); // inside C
+        inA = lookAt({-5.5f, 1.6f, -2.5f}, {-1.0f, 1.0f, 2.0f});
+        inB = lookAt({0.9f, 1.6f, 2.5f}, {3.3f, 1.3f, 0.0f});
+        scene.cameras.push_back(inA);
+        scene.validate();
+    }
+
+    static bool inside(const glm::vec3& p, const glm::vec3& lower, const glm::vec3& upper)
+    {
+        return glm::all(glm::greaterThan(p, lower)) && glm::all(glm::lessThan(p, upper));
+    }
+    bool inRoomA(const glm::vec3& p) const { return inside(p, roomALower - 0.01f, roomAUpper + 0.01f); }
+    bool inRoomB(const glm::vec3& p) const { return inside(p, roomBLower - 0.01f, roomBUpper + 0.01f); }
+    // Strictly inside C's walls: only C's inner faces are there.
+    bool inBox(const glm::vec3& p) const { return inside(p, boxLower + 0.05f, boxUpper - 0.05f); }
+    bool onBoxOutside(const glm::vec3& p) const
+    {
+        return inside(p, boxLower - 0.01f, boxUpper + 0.01f) && !inBox(p);
+    }
+};
+
+// A point on the inside of the furnace sphere with its inward normal, as the sampler sees walls.
+SurfacePoint furnaceWallPoint(const Scene& scene, const RayScene& rays, const glm::vec3& direction)
+{
+    Ray ray;
+    ray.origin = glm::vec3(0.0f);
+    ray.direction = glm::normalize(direction);
+    const Hit hit = rays.intersect(ray);
+    REQUIRE(hit.valid());
+    return surfaceAt(scene, hit, -ray.direction);
+}
+
+SMCIRParams smallParams(int vplCount, int warmup)
+{
+    SMCIRParams params;
+    params.vplCount = vplCount;
+    params.warmupIterations = warmup;
+    return params;
+}
+
+} // namespace
+
+TEST_CASE("reflected radiance at a furnace wall point: closed forms per bounce, diffuse lobe only", "[smcir][reference]")
+{
+    FurnaceParams furnace; // R = 1, rho = 0.5, I0 = pi: L_n = 0.5^n, L_all = 1
+    const Scene scene = makeFurnace(furnace);
+    const RayScene rays(scene);
+    const SurfacePoint y = furnaceWallPoint(scene, rays, {0.3f, -0.5f, 0.8f});
+
+    // One bounce: direct light at y only, no randomness left: one shadow ray and the continuation
+    // ray per sample (Embree rays counted exactly).
+    std::uint64_t count = 0;
+    const glm::vec3 direct = estimateReflectedRadiance(scene, rays, y, 8, 1, 3u, &count);
+    CHECK(direct.g == Approx(furnaceRadianceBounce(furnace, 1)).epsilon(2e-3));
+    CHECK(count == 2u * 8u);
+    // Three bounces, the SMCIR default: L_1 + L_2 + L_3 (Russian roulette only past vertex 3).
+    const double three = furnaceRadianceBounce(furnace, 1) + furnaceRadianceBounce(furnace, 2) +
+                         furnaceRadianceBounce(furnace, 3);
+    CHECK(estimateReflectedRadiance(scene, rays, y, 16, 3, 3u).g == Approx(three).epsilon(2e-3));
+    // Many bounces: L_all (Russian roulette noise averages out over 2000 paths).
+    CHECK(estimateReflectedRadiance(scene, rays, y, 2000, 60, 3u).g == Approx(furnaceRadianceAll(furnace)).epsilon(0.01));
+    // The same seed gives the same value; another seed another one.
+    CHECK(estimateReflectedRadiance(scene, rays, y, 16, 60, 5u) == estimateReflectedRadiance(scene, rays, y, 16, 60, 5u));
+    CHECK(estimateReflectedRadiance(scene, rays, y, 16, 60, 5u) != estimateReflectedRadiance(scene, rays, y, 16, 60, 6u));
+
+    // Only the diffuse lobe at y: (1 - metallic) * baseColor / pi; a dielectric specular lobe or a
+    // metallic part reflects nothing into L(y) (SMCIR 3.1's Lambert assumption).
+    SurfacePoint glossy = y;
+    glossy.material.specular = 1.0f;
+    glossy.material.roughness = 0.2f;
+    CHECK(estimateReflectedRadiance(scene, rays, glossy, 8, 1, 3u).g == Approx(direct.g).epsilon(1e-6));
+    SurfacePoint metal = y;
+    metal.material.metallic = 0.5f;
+    CHECK(estimateReflectedRadiance(scene, rays, metal, 8, 1, 3u).g == Approx(0.5 * direct.g).epsilon(1e-6));
+    CHECK_THROWS_AS(estimateReflectedRadiance(scene, rays, y, 0, 3, 1u), Error);
+    CHECK_THROWS_AS(ReflectedRadianceEstimator(scene, rays, 0), Error);
+}
+
+TEST_CASE("smcir parameters: paper defaults, one field list, eq. (8)", "[smcir][params]")
+{
+    const SMCIRParams defaults;
+    CHECK(defaults.vplCount == 2048);       // I (4 Implementation / 3.2)
+    CHECK(defaults.maxMoves == 16);         // M_max
+    CHECK(defaults.validationRays == 16);   // V (3.2.2)
+    CHECK(defaults.validationIterations == 2);
+    CHECK(defaults.candidateFactor == 16);  // 16:1 (3.2.1)
+    CHECK(defaults.resampleRetries == 8);
+    CHECK(defaults.radiositySamples == 16); // 3.2.3
+    CHECK(defaults.radiosityBounces == 3);
+    CHECK(defaults.knnRender == 0);         // eq. (8)
+    CHECK(defaults.strongFraction == 0.95f); // eq. (9)
+    CHECK(defaults.warmupIterations == 100);
+    CHECK(computeRenderingK(2048) == 8);
+    CHECK(computeRenderingK(512) == 4);
+    CHECK(computeRenderingK(8192) == 16);
+    CHECK(computeRenderingK(256) == 2);
+    CHECK(computeRenderingK(31) == 1);
+    CHECK(computeRenderingK(1) == 1);
+
+    SMCIRParams params;
+    ParamDumper dump;
+    params.visitParams(dump);
+    const auto& values = dump.values();
+    for (const char* key : {"smcir.vplCount", "smcir.maxMoves", "smcir.validationRays", "smcir.validationIterations",
+                            "smcir.candidateFactor", "smcir.resampleRetries", "smcir.candidateDensityK",
+                            "smcir.radiositySamples", "smcir.radiosityBounces", "smcir.knnRender",
+                            "smcir.strongFraction", "smcir.cameraSamplesX", "smcir.cameraSamplesY",
+                            "smcir.warmupIterations", "smcir.seed"})
+        CHECK(values.count(key) == 1);
+    CHECK(values.size() == 15);
+    CHECK(values.at("smcir.vplCount") == "2048");
+
+    ParamSetter setter(Settings{{"smcir.vplCount", "512"}, {"smcir.maxMoves", "8"}, {"smcir.seed", "7"}});
+    params.visitParams(setter);
+    setter.finish();
+    CHECK(params.vplCount == 512);
+    CHECK(params.maxMoves == 8);
+    CHECK(params.seed == 7u);
+    CHECK(params.radiositySamples == 16); // untouched
+    SMCIRParams other;
+    ParamSetter bad(Settings{{"smcir.strongFraction", "1.5"}});
+    CHECK_THROWS_AS(other.visitParams(bad), Error);
+
+    const Scene scene = makeFurnace(FurnaceParams{});
+    const RayScene rays(scene);
+    SMCIRParams zero;
+    zero.vplCount = 0;
+    CHECK_THROWS_AS(SMCIRSampler(scene, rays, zero), Error);
+    SMCIRSampler sampler(scene, rays, smallParams(16, 0));
+    CHECK_THROWS_AS(sampler.step(scene.cameras[0]), Error); // before initialize()
+}
+
+namespace {
+
+struct FurnaceSummary {
+    double meanRadiance = 0.0;       // mean of L(y) (green)
+    double meanInverseDensity = 0.0; // mean of 1/p(y) [m^2]
+    double worstEq5 = 0.0;           // worst relative error of eq. (5) against rho L_all over 6 wall points
+    double meanEq5 = 0.0;            // mean of eq. (5) / (rho L_all)
+};
+
+// Eq. (5) at wall points x: (1/I) sum_i (rho/pi) G(x, y_i) I(y_i), G = 1/(4R^2) for every pair
+// (MATH.md 3), so it must give rho L_all when the intensities are right on average.
+FurnaceSummary summarizeFurnace(const Scene& scene, const RayScene& rays, const FurnaceParams& furnace, const VPLSet& set)
+{
+    FurnaceSummary summary;
+    const double count = static_cast<double>(set.validCount());
+    for (const VPL& v : set.slots) {
+        summary.meanRadiance += v.radiance.g / count;
+        summary.meanInverseDensity += 1.0 / v.density / count;
+    }
+    const double expected = furnace.albedo * furnaceRadianceAll(furnace);
+    const std::array<glm::vec3, 6> directions{
+        {{1, 0, 0}, {-1, 0.2f, 0}, {0, 1, 0}, {0.3f, -1, 0.1f}, {0, 0, 1}, {0.2f, 0.1f, -1}}};
+    for (const glm::vec3& direction : directions) {
+        const SurfacePoint x = furnaceWallPoint(scene, rays, direction);
+        double sum = 0.0;
+        for (const VPL& v : set.slots) {
+            const glm::vec3 d = v.position - x.position;
+            const double d2 = glm::dot(d, d);
+            const glm::vec3 w = d / static_cast<float>(std::sqrt(d2));
+            const double geometry = std::max(0.0f, glm::dot(x.normal, w)) * std::max(0.0f, -glm::dot(v.normal, w)) / d2;
+            sum += furnace.albedo / kPi * geometry * v.intensity().g;
+        }
+        const double ratio = sum / count / expected;
+        summary.meanEq5 += ratio / directions.size();
+        summary.worstEq5 = std::max(summary.worstEq5, std::abs(ratio - 1.0));
+    }
+    return summary;
+}
+
+} // namespace
+
+TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (5) = rho L_all", "[smcir]")
+{
+    FurnaceParams furnace; // R = 1, rho = 0.5, I0 = pi: L_n = 0.5^n, L_all = 1
+    const Scene scene = makeFurnace(furnace);
+    const RayScene rays(scene);
+    const double area = 4.0 * kPi * furnace.radius * furnace.radius;
+    const double all = furnaceRadianceAll(furnace);
+
+    // radiosityBounces = 3 (the default): every VPL carries L_1 + L_2 + L_3. Nothing is random in the
+    // furnace except at the facets: a cosine direction about the smooth normal that falls below the
+    // flat triangle's horizon ends its path (path tracer rule), which costs 1/16 of L_2 + L_3 = 2.7 %.
+    {
+        SMCIRSampler sampler(scene, rays, smallParams(256, 0));
+        sampler.initialize(scene.cameras[0]);
+        const double three = furnaceRadianceBounce(furnace, 1) + furnaceRadianceBounce(furnace, 2) +
+                             furnaceRadianceBounce(furnace, 3);
+        double worst = 0.0, mean = 0.0;
+        for (const VPL& v : sampler.vpls().slots) {
+            REQUIRE(v.valid);
+            CHECK(std::abs(glm::length(v.position) - furnace.radius) < 1e-3f); // on the wall
+            worst = std::max(worst, std::abs(v.radiance.g / three - 1.0));
+            mean += v.radiance.g / three / 256.0;
+        }
+        CHECK(mean == Approx(1.0).epsilon(3e-3));
+        CHECK(worst < 0.03);
+    }
+
+    // All bounces, right after initialization (line 1: candidates resampled to uniform in area, no
+    // selection yet): radiance L_all, mean 1/p = 4 pi R^2 (E[1/p] is exact, MATH.md 2) and eq. (5)
+    // = rho L_all. A large rendering k keeps the kNN noise small. This pins the normalisation:
+    // 1/I, L (not B = pi L), p integrating to 1.
+    SMCIRParams params = smallParams(512, 0);
+    params.radiosityBounces = 40;
+    params.radiositySamples = 64;
+    params.knnRender = 32;
+    {
+        SMCIRSampler sampler(scene, rays, params);
+        sampler.initialize(scene.cameras[0]);
+        REQUIRE(sampler.vpls().validCount() == 512);
+        const FurnaceSummary initial = summarizeFurnace(scene, rays, furnace, sampler.vpls());
+        std::printf("smcir furnace, initialized (I = 512, k = 32): mean L = %.4f (L_all %.4f), mean 1/p = %.3f m^2 "
+                    "(4 pi R^2 = %.3f), eq. (5) / (rho L_all) = %.4f, worst error %.2f %%\n",
+                    initial.meanRadiance, all, initial.meanInverseDensity, area, initial.meanEq5,
+                    100.0 * initial.worstEq5);
+        CHECK(initial.meanRadiance == Approx(all).epsilon(0.01));
+        CHECK(initial.meanInverseDensity == Approx(area).epsilon(0.03));
+        CHECK(initial.worstEq5 < 0.03);
+    }
+
+    // After 20 frames the set is blue noise (candidates are ranked with k = 1, 3.2.4), and kNN on a
+    // repulsive set over-estimates 1/p: the paper's estimator is biased, though consistent (3.3),
+    // and the bias falls as k grows. It also keeps the VPLs whose frozen radiance estimate came out
+    // high (ranking by a noisy L). Measured: 1/p +14 % at k = 4 (eq. 8 at I = 512), +3 % at k = 32.
+    auto warmed = [&](int knnRender) {
+        SMCIRParams p = params;
+        p.warmupIterations = 20;
+        p.radiositySamples = 16;
+        p.knnRender = knnRender;
+        SMCIRSampler sampler(scene, rays, p);
+        sampler.initialize(scene.cameras[0]);
+        return summarizeFurnace(scene, rays, furnace, sampler.vpls());
+    };
+    const FurnaceSummary eq8 = warmed(0), wide = warmed(32);
+    std::printf("smcir furnace, 20 warm-up frames (I = 512): k = 4: mean L %.4f, mean 1/p / area %.4f, eq. (5) %.4f;"
+                " k = 32: mean L %.4f, mean 1/p / area %.4f, eq. (5) %.4f\n",
+                eq8.meanRadiance / all, eq8.meanInverseDensity / area, eq8.meanEq5, wide.meanRadiance / all,
+                wide.meanInverseDensity / area, wide.meanEq5);
+    CHECK(eq8.meanInverseDensity / area > 1.0);
+    CHECK(eq8.meanInverseDensity / area < 1.25);
+    CHECK(wide.meanInverseDensity / area < eq8.meanInverseDensity / area);
+    CHECK(wide.meanInverseDensity / area == Approx(1.0).epsilon(0.06));
+    CHECK(eq8.meanRadiance / all == Approx(1.0).epsilon(0.1));
+    CHECK(eq8.meanEq5 > 1.0);
+    CHECK(eq8.meanEq5 < 1.35);
+}
+
+TEST_CASE("smcir indirect visibility: no VPL where no camera-visible point can see (sealed rooms)", "[smcir]")
+{
+    const SealedRooms rooms;
+    const RayScene rays(rooms.scene);
+    SMCIRParams params = smallParams(256, 3);
+    params.maxMoves = 32;
+    SMCIRSampler sampler(rooms.scene, rays, params);
+    sampler.initialize(rooms.inA);
+    auto count = [&](auto predicate) {
+        int n = 0;
+        for (const VPL& v : sampler.vpls().slots)
+            if (v.valid && predicate(v.position)) ++n;
+        return n;
+    };
+    REQUIRE(sampler.vpls().validCount() == 256);
+    CHECK(count([&](const glm::vec3& p) { return rooms.inRoomA(p); }) == 256);
+
+    // Teleport into room B: no point of B sees a VPL of A, so every VPL of A is invalid, and each
+    // frame removes exactly min(M_max, |A|) of them (CLAMPSIZE), invalid ones first.
+    int inA = 256;
+    int frames = 0;
+    while (inA > 0 && frames < 20) {
+        sampler.step(rooms.inB);
+        ++frames;
+        const SMCIRStageTimes& times = sampler.lastTimes();
+        CHECK(times.invalidated == inA);
+        const int nowInA = count([&](const glm::vec3& p) { return rooms.inRoomA(p); });
+        CHECK(nowInA == std::max(0, inA - params.maxMoves));
+        CHECK(times.moved <= params.maxMoves);
+        CHECK(times.moved >= std::min(params.maxMoves, inA));
+        inA = nowInA;
+    }
+    CHECK(frames == 256 / 32);
+    for (int i = 0; i < 5; ++i)
+        sampler.step(rooms.inB);
+    CHECK(sampler.lastTimes().invalidated == 0); // a static camera keeps every VPL's mail box valid
+    CHECK(count([&](const glm::vec3& p) { return rooms.inRoomB(p); }) == 256);
+    // C is lit from inside by the brightest light, but no ray from B gets in.
+    CHECK(count([&](const glm::vec3& p) { return rooms.inBox(p); }) == 0);
+    CHECK(count([&](const glm::vec3& p) { return rooms.onBoxOutside(p); }) > 0);
+}
+
+TEST_CASE("smcir validation rays re-validate VPLs that lost their mail box (3.2.2)", "[smcir]")
+{
+    // Inside room B the camera turns round: most associated points leave the view, but every wall
+    // of the closed room still sees almost every VPL, so the validation rays must find them again
+    // and re-associate them with points the camera sees now.
+    const SealedRooms rooms;
+    const RayScene rays(rooms.scene);
+    SMCIRSampler sampler(rooms.scene, rays, smallParams(256, 3));
+    sampler.initialize(rooms.inB);
+    sampler.step(rooms.inB);
+    CHECK(sampler.lastTimes().mailboxMisses == 0);
+    const Camera turned = lookAt({5.5f, 1.6f, -2.5f}, {0.6f, 1.2f, 2.9f});
+    sampler.step(turned);
+    const SMCIRStageTimes first = sampler.lastTimes();
+    sampler.step(turned);
+    const SMCIRStageTimes second = sampler.lastTimes();
+    std::printf("smcir validation: after turning, %d of 256 mail boxes missed, %d still invalid after the rays;"
+                " next frame %d missed\n",
+                first.mailboxMisses, first.invalidated, second.mailboxMisses);
+    CHECK(first.mailboxMisses > 64);
+    CHECK(first.invalidated < first.mailboxMisses / 5);
+    // Re-validated VPLs hold a point the camera sees: only the still-invalid ones miss again.
+    CHECK(second.mailboxMisses <= first.invalidated);
+    // No validation rays: every miss stays invalid.
+    SMCIRParams noRays = smallParams(256, 3);
+    noRays.validationIterations = 0;
+    SMCIRSampler blind(rooms.scene, rays, noRays);
+    blind.initialize(rooms.inB);
+    blind.step(turned);
+    CHECK(blind.lastTimes().invalidated == blind.lastTimes().mailboxMisses);
+    CHECK(blind.lastTimes().mailboxMisses > 64);
+}
+
+TEST_CASE("smcir stable slots: at most M_max slots change per frame, others keep their VPL (maze)", "[smcir]")
+{
+    const Scene scene = makeBuiltinScene("maze");
+    const RayScene rays(scene);
+    SMCIRParams params = smallParams(512, 3);
+    SMCIRSampler sampler(scene, rays, params);
+    const Camera base = scene.cameras[0];
+    sampler.initialize(base);
+    REQUIRE(sampler.vpls().changed.size() == 512); // everything is new to the renderer
+    REQUIRE(sampler.vpls().validCount() == 512);
+
+    int invalidated = 0, violations = 0;
+    for (int frame = 0; frame < 24; ++frame) {
+        // 12 frames with a static camera, then 12 walking through the door and turning.
+        Camera camera = base;
+        if (frame >= 12) {
+            const float t = static_cast<float>(frame - 11) / 12.0f;
+            camera.position = base.position + (base.target - base.position) * (0.9f * t);
+            camera.target = base.target + glm::vec3(3.0f * std::sin(2.0f * t), 0.0f, 3.0f * std::cos(2.0f * t) - 3.0f);
+        }
+        const std::vector<VPL> before = sampler.vpls().slots;
+        const std::uint64_t generation = sampler.vpls().generation;
+        sampler.step(camera);
+        const VPLSet& set = sampler.vpls();
+        const std::set<std::uint32_t> changed(set.changed.begin(), set.changed.end());
+        CHECK(set.changed.size() <= static_cast<std::size_t>(params.maxMoves));
+        CHECK(changed.size() == set.changed.size());                       // no duplicates
+        CHECK(std::is_sorted(set.changed.begin(), set.changed.end()));
+        CHECK(static_cast<int>(set.changed.size()) == sampler.lastTimes().moved);
+        CHECK(set.generation == generation + 1);
+        for (std::size_t slot = 0; slot < set.slots.size(); ++slot) {
+            if (changed.count(static_cast<std::uint32_t>(slot))) continue;
+            const VPL& a = before[slot];
+            const VPL& b = set.slots[slot];
+            // Unchanged slots: same VPL, same cached radiance; only the density is re-estimated.
+            if (a.valid != b.valid || a.position != b.position || a.normal != b.normal || a.radiance != b.radiance)
+                ++violations;
+        }
+        if (frame < 12) CHECK(sampler.lastTimes().invalidated == 0);
+        invalidated += sampler.lastTimes().invalidated;
+    }
+    CHECK(violations == 0);
+    CHECK(invalidated > 0); // the walk did exercise 3.2.2
+    CHECK(sampler.vpls().validCount() == 512);
+}
+
+TEST_CASE("smcir converges in a static scene: intensities even out, then stay even (maze)", "[smcir]")
+{
+    // The initial VPLs are uniform in area, so their intensities L/p spread over orders of magnitude
+    // (lit and unlit rooms). Each frame replaces up to M_max of the weakest with candidates stronger
+    // than 95 % of the set (eq. 9); the spread must shrink, and once few candidates are strong the
+    // set must stay put. The CoV of I is dominated by its few largest values; the standard deviation
+    // of log I shows the bulk.
+    const Scene scene = makeBuiltinScene("maze");
+    const RayScene rays(scene);
+    SMCIRSampler sampler(scene, rays, smallParams(512, 0));
+    const Camera camera = scene.cameras[0];
+    sampler.initialize(camera);
+    auto spreadOfLog = [](const VPLSet& set) {
+        double sum = 0.0, sum2 = 0.0;
+        int n = 0;
+        for (const VPL& v : set.slots) {
+            const double l = std::log(std::max(1e-12, static_cast<double>(luminance(v.intensity()))));
+            sum += l;
+            sum2 += l * l;
+            ++n;
+        }
+        return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+    };
+    sampler.step(camera);
+    const double firstCoV = intensityCoV(sampler.vpls()), firstLog = spreadOfLog(sampler.vpls());
+    for (int i = 1; i < 30; ++i)
+        sampler.step(camera);
+    const double thirtyCoV = intensityCoV(sampler.vpls()), thirtyLog = spreadOfLog(sampler.vpls());
+    double laterCoV = 0.0, worstLog = 0.0, moved = 0.0;
+    for (int i = 0; i < 30; ++i) {
+        sampler.step(camera);
+        laterCoV += intensityCoV(sampler.vpls()) / 30.0;
+        worstLog = std::max(worstLog, spreadOfLog(sampler.vpls()));
+        moved += sampler.lastTimes().moved / 30.0;
+    }
+    std::printf("smcir maze convergence (I = 512): CoV of I after 1 frame %.3f, after 30 %.3f, frames 31-60 mean %.3f;"
+                " sd(log I) %.3f, %.3f, worst of 31-60 %.3f; moved per frame in 31-60 %.2f\n",
+                firstCoV, thirtyCoV, laterCoV, firstLog, thirtyLog, worstLog, moved);
+    CHECK(thirtyCoV < firstCoV);
+    CHECK(thirtyLog < 0.6 * firstLog);
+    CHECK(laterCoV < thirtyCoV);
+    CHECK(worstLog < 1.05 * thirtyLog);
+    CHECK(moved < 0.25 * SMCIRParams{}.maxMoves); // few strong candidates left: the set settles
+}
+
+TEST_CASE("smcir caches radiance until invalidateRadiance(); re-estimates keep each VPL's seed", "[smcir]")
+{
+    FurnaceParams furnace;
+    Scene scene = makeFurnace(furnace);
+    const RayScene rays(scene);
+    SMCIRParams params = smallParams(256, 2);
+    params.radiosityBounces = 8; // some Russian roulette: radiance values differ between VPLs
+    SMCIRSampler sampler(scene, rays, params);
+    sampler.initialize(scene.cameras[0]);
+
+    // The light doubles; without invalidateRadiance() surviving VPLs keep their values bit for bit,
+    // and only the candidates are traced.
+    const std::vector<VPL> before = sampler.vpls().slots;
+    scene.lights[0].intensity *= 2.0f;
+    sampler.step(scene.cameras[0]);
+    const SMCIRStageTimes cached = sampler.lastTimes();
+    CHECK(cached.radianceEstimates == cached.candidates);
+    std::set<std::uint32_t> changed(sampler.vpls().changed.begin(), sampler.vpls().changed.end());
+    int survivors = 0, differ = 0;
+    for (std::uint32_t slot = 0; slot < 256; ++slot) {
+        if (changed.count(slot)) continue;
+        ++survivors;
+        if (sampler.vpls().slots[slot].radiance != before[slot].radiance) ++differ;
+    }
+    CHECK(survivors >= 256 - params.maxMoves);
+    CHECK(differ == 0);
+
+    // invalidateRadiance(): every VPL is traced again with its own seed, so each value is exactly
+    // twice the old one (the estimate is linear in the light, and the paths are the same).
+    const std::vector<VPL> middle = sampler.vpls().slots;
+    sampler.invalidateRadiance();
+    sampler.step(scene.cameras[0]);
+    const SMCIRStageTimes fresh = sampler.lastTimes();
+    changed = std::set<std::uint32_t>(sampler.vpls().changed.begin(), sampler.vpls().changed.end());
+    CHECK(fresh.radianceEstimates == fresh.candidates + 256 - static_cast<int>(changed.size()));
+    int notDoubled = 0, doubledFromOld = 0;
+    for (std::uint32_t slot = 0; slot < 256; ++slot) {
+        if (changed.count(slot)) continue;
+        const glm::vec3 now = sampler.vpls().slots[slot].radiance;
+        if (!(glm::vec3(2.0f) * before[slot].radiance == now) && !(middle[slot].radiance == now)) ++notDoubled;
+        if (glm::vec3(2.0f) * before[slot].radiance == now) ++doubledFromOld;
+    }
+    CHECK(notDoubled == 0);
+    CHECK(doubledFromOld >= 256 - 2 * params.maxMoves); // the survivors of both frames
+    // After the re-estimate the cache holds again.
+    const std::vector<VPL> after = sampler.vpls().slots;
+    sampler.step(scene.cameras[0]);
+    CHECK(sampler.lastTimes().radianceEstimates == sampler.lastTimes().candidates);
+}
+
+TEST_CASE("smcir is deterministic: same seed and cameras give the same set at 1 and 2 threads", "[smcir]")
+{
+    const Scene scene = makeBuiltinScene("cornell");
+    const RayScene rays(scene);
+    const Camera base = scene.cameras[0];
+    auto run = [&](int threads, std::uint32_t seed) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+        SMCIRParams params = smallParams(256, 2);
+        params.seed = seed;
+        SMCIRSampler sampler(scene, rays, params);
+        sampler.initialize(base);
+        std::vector<VPLSet> sets;
+        for (int frame = 0; frame < 6; ++frame) {
+            Camera camera = base;
+            camera.position += glm::vec3(0.1f * frame, 0.05f * frame, -0.1f * frame);
+            camera.target += glm::vec3(-0.2f * frame, 0.0f, 0.0f);
+            sampler.step(camera);
+            sets.push_back(sampler.vpls());
+        }
+        return sets;
+    };
+    const std::vector<VPLSet> two = run(2, 7u);
+    const std::vector<VPLSet> again = run(2, 7u);
+    const std::vector<VPLSet> one = run(1, 7u);
+    const std::vector<VPLSet> otherSeed = run(2, 8u);
+    bool sameAgain = true, sameOne = true, sameOther = true;
+    for (std::size_t i = 0; i < two.size(); ++i) {
+        sameAgain = sameAgain && identicalSets(two[i], again[i]);
+        sameOne = sameOne && identicalSets(two[i], one[i]);
+        sameOther = sameOther && identicalSets(two[i], otherSeed[i]);
+    }
+    CHECK(sameAgain);
+    CHECK(sameOne);
+    CHECK_FALSE(sameOther);
+    CHECK(two.back().validCount() == 256);
+}
