@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "core/error.h"
 #include "core/params.h"
+#include "core/ray_scene.h"
 #include "gl/api/context.h"
 #include "report.h"
 #include "session.h"
@@ -162,11 +163,33 @@ int runBench(const std::vector<std::string>& args)
         std::printf("| **total** | %s | %s | %s |\n\n", formatNumber(a.total.median()).c_str(),
                     formatNumber(b.total.median()).c_str(), formatNumber(b.total.median() / a.total.median(), 3).c_str());
     }
+    // Ray efficiency of CPU stages that report their rays: the time those rays take at the Embree
+    // throughput measured now, in this run, over the stage's wall time (SMCIR's goal: >= 0.75).
+    std::string efficiencyJson;
+    for (const BenchResult& r : results) {
+        auto rays = r.stats.find("sampler: rays");
+        auto total = r.stats.find("sampler: total ms");
+        if (rays == r.stats.end() || total == r.stats.end()) continue;
+        const RayScene rayScene(sessions.front()->scene());
+        const RayThroughput throughput = measureRayThroughput(rayScene, 200000);
+        const double raysPerFrame = rays->second.median(), wallSeconds = total->second.median() * 1e-3;
+        const double atIntersect = raysPerFrame / throughput.intersectPerSecond / wallSeconds;
+        const double atOccluded = raysPerFrame / throughput.occludedPerSecond / wallSeconds;
+        std::printf("%s: Embree throughput in this run %.2f Mrays/s (intersect), %.2f Mrays/s (occluded); sampler "
+                    "%.0f rays per frame in %.1f ms: ray efficiency %.2f (intersect rate) to %.2f (occluded rate)\n\n",
+                    r.technique.c_str(), throughput.intersectPerSecond * 1e-6, throughput.occludedPerSecond * 1e-6,
+                    raysPerFrame, total->second.median(), atIntersect, atOccluded);
+        efficiencyJson = ", \"rayEfficiency\": {\"intersectMraysPerSecond\": " +
+                         std::to_string(throughput.intersectPerSecond * 1e-6) +
+                         ", \"occludedMraysPerSecond\": " + std::to_string(throughput.occludedPerSecond * 1e-6) +
+                         ", \"atIntersectRate\": " + std::to_string(atIntersect) +
+                         ", \"atOccludedRate\": " + std::to_string(atOccluded) + "}";
+    }
     std::string json = "{\"scene\": \"" + sessions.front()->scene().source + "\", \"width\": " + std::to_string(width) +
                        ", \"height\": " + std::to_string(height) + ", \"frames\": " + std::to_string(frames) +
                        ", \"results\": [";
     for (std::size_t i = 0; i < results.size(); ++i) json += (i ? ", " : "") + jsonOf(results[i]);
-    json += "]}\n";
+    json += "]" + efficiencyJson + "}\n";
     std::printf("%s", json.c_str());
     if (parser.has("json")) writeTextFile(parser.get("json"), json);
     return 0;

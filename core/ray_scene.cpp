@@ -1,7 +1,14 @@
 #include "ray_scene.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <embree3/rtcore.h>
 
@@ -120,6 +127,38 @@ bool RayScene::visible(const glm::vec3& a, const glm::vec3& b) const
     ray.tMin = 1e-4f;
     ray.tMax = 1.0f - 1e-4f;
     return !occluded(ray);
+}
+
+RayThroughput measureRayThroughput(const RayScene& rays, int count, std::uint32_t seed)
+{
+    const AABB bounds = rays.scene().worldBounds();
+    std::vector<Ray> batch(static_cast<std::size_t>(count));
+    std::uint32_t state = seed * 747796405u + 2891336453u;
+    auto next = [&state] { // xorshift: the batch only needs to be spread, not high quality
+        state ^= state << 13u;
+        state ^= state >> 17u;
+        state ^= state << 5u;
+        return static_cast<float>(state) * 2.3283064365386963e-10f;
+    };
+    for (Ray& r : batch) {
+        r.origin = bounds.lower + glm::vec3(next(), next(), next()) * bounds.extent();
+        const float z = 2.0f * next() - 1.0f, phi = 6.2831853f * next(), s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        r.direction = glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+    }
+    RayThroughput result;
+    auto time = [&](auto&& cast) {
+        const auto start = std::chrono::steady_clock::now();
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 256), [&](const auto& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) cast(batch[i]);
+        });
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    std::atomic<int> sink{0};
+    const double intersectSeconds = time([&](const Ray& r) { sink += rays.intersect(r).valid() ? 1 : 0; });
+    const double occludedSeconds = time([&](const Ray& r) { sink += rays.occluded(r) ? 1 : 0; });
+    result.intersectPerSecond = count / std::max(intersectSeconds, 1e-9);
+    result.occludedPerSecond = count / std::max(occludedSeconds, 1e-9);
+    return result;
 }
 
 } // namespace vplgi

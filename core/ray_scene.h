@@ -3,6 +3,7 @@
 // triangle index within the mesh. Thread-safe queries (Embree's rtcIntersect1/rtcOccluded1).
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 
@@ -27,6 +28,16 @@ struct Hit {
     glm::vec3 geometricNormal{0.0f}; // world space, unnormalized, from the triangle winding
     bool valid() const { return instance >= 0; }
 };
+
+struct RayThroughput {
+    double intersectPerSecond = 0.0; // closest-hit rays per second (rtcIntersect1)
+    double occludedPerSecond = 0.0;  // any-hit rays per second (rtcOccluded1)
+};
+
+class RayScene;
+// Casts `count` random rays of each kind (origins uniform in the scene bounds, directions uniform)
+// on all TBB threads and measures the rate: the yardstick for "ray efficiency" of CPU stages.
+RayThroughput measureRayThroughput(const RayScene& rays, int count, std::uint32_t seed = 1);
 
 class RayScene {
 public:

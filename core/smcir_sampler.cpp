@@ -31,6 +31,8 @@ void SMCIRParams::visitParams(ParamVisitor& v)
     v.field("smcir.candidateDensityK", candidateDensityK, 1, 64,
             "k of the kNN density of the raw candidate points (resampling weights)");
     v.field("smcir.radiositySamples", radiositySamples, 1, 65536, "path-tracer samples per VPL radiance (3.2.3)");
+    v.field("smcir.candidateRadianceSamples", candidateRadianceSamples, 0, 65536,
+            "samples for candidate radiance screening (line 7); 0 = radiositySamples as in the paper");
     v.field("smcir.radiosityBounces", radiosityBounces, 1, 1024,
             "most reflections of the radiance paths, counting the one at the VPL (3.2.3: 3)");
     v.field("smcir.knnRender", knnRender, 0, 1024,
@@ -453,8 +455,7 @@ void SMCIRSampler::estimateCandidateRadiance(std::vector<Candidate>& candidates)
 {
     std::vector<std::uint64_t> rays(candidates.size(), 0);
     parallelFor(candidates.size(), 4, [&](std::size_t i) {
-        candidates[i].radiance =
-            mEstimator->estimate(candidates[i].surface, mParams.radiositySamples, candidates[i].seed, &rays[i]);
+        candidates[i].radiance = mEstimator->estimate(candidates[i].surface, candidateSamples(), candidates[i].seed, &rays[i]);
     });
     mRayCount += std::accumulate(rays.begin(), rays.end(), std::uint64_t{0});
     mEstimates += static_cast<int>(candidates.size());
@@ -526,7 +527,14 @@ void SMCIRSampler::assignSlot(std::uint32_t slot, const Candidate& candidate, co
     state.origin = candidate.origin;
     state.associated = points[candidate.cameraPoint]; // 3.2.2: the point it was generated from
     state.radianceSeed = candidate.seed;
-    state.radianceEpoch = mRadianceEpoch;
+    // A screened candidate (fewer samples than a VPL gets) is re-estimated in full by line 18.
+    state.radianceEpoch = candidateSamples() == mParams.radiositySamples ? mRadianceEpoch : kStaleEpoch;
+}
+
+int SMCIRSampler::candidateSamples() const
+{
+    return mParams.candidateRadianceSamples > 0 ? std::min(mParams.candidateRadianceSamples, mParams.radiositySamples)
+                                                : mParams.radiositySamples;
 }
 
 void SMCIRSampler::clearSlot(std::uint32_t slot)
@@ -568,6 +576,8 @@ void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::fun
     mTimes.radiosity = millisecondsSince(t);
     for (std::size_t i = 0; i < candidates.size() && i < mSet.slots.size(); ++i)
         assignSlot(static_cast<std::uint32_t>(i), candidates[i], points);
+    estimateStaleRadiance(); // only screened candidates (candidateRadianceSamples) are stale here
+    mTimes.radiosity = millisecondsSince(t);
     t = Clock::now();
     estimateRenderingDensities();
     mTimes.knn = millisecondsSince(t);

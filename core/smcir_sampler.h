@@ -154,6 +154,10 @@ struct SMCIRParams {
     int candidateDensityK = 8;      // k of the kNN density of the raw candidate points [1, 64]
     int radiositySamples = 16;      // path-tracer samples per VPL radiance (3.2.3) [1, 65536]
     int radiosityBounces = 3;       // most reflections of those paths, counting the one at the VPL [1, 1024]
+    int candidateRadianceSamples = 0; // samples for the candidates' radiance (line 7) [0, 65536]; 0 = the
+                                      // paper (radiositySamples). Fewer screens the candidates cheaply; a
+                                      // candidate that becomes a VPL is then re-estimated with
+                                      // radiositySamples and its own seed (line 18). Not in the paper.
     int knnRender = 0;              // k of the rendering densities (line 19); 0 = eq. (8) [0, 1024]
     float strongFraction = 0.95f;   // eq. (9): a candidate is strong above this fraction of the VPLs [0, 1]
     int cameraSamplesX = 64;        // RAYCASTFROMCAMERA grid columns (jittered per frame) [1, 4096]
@@ -245,6 +249,8 @@ private:
     std::vector<SlotState> mSlots;                // per slot, beside mSet.slots
     std::uint64_t mFrame = 0;
     std::uint64_t mRadianceEpoch = 0;             // bumped by invalidateRadiance()
+    static constexpr std::uint64_t kStaleEpoch = ~std::uint64_t{0}; // never current: forces re-estimation
+    int candidateSamples() const;                 // samples of line 7
     bool mInitialized = false;
     SMCIRStageTimes mTimes;
     std::uint64_t mRayCount = 0;                  // rays of the frame being built

@@ -18,6 +18,8 @@ void SMCIRRayTracedTechnique::visitParams(ParamVisitor& v)
     mParams.visitParams(v);
     v.field("smcir.clampDistance", mClampDistance, 0.0f, 1.0f,
             "VPL clamping: G is capped at 1/d^2 with d this fraction of the scene diagonal (0 = no clamping)");
+    v.field("smcir.invalidateEveryFrame", mInvalidateEveryFrame,
+            "re-estimate every VPL's radiance each frame, as when a light moves (to measure that cost)");
 }
 
 void SMCIRRayTracedTechnique::setScene(const SceneContext& context)
@@ -41,7 +43,7 @@ void SMCIRRayTracedTechnique::update(const FrameContext& frame)
     }
     mRendered = mSampler->vpls();
     mTimes = mSampler->lastTimes();
-    mWorker->submit(frame.camera, aspect, frame.lightsChanged);
+    mWorker->submit(frame.camera, aspect, frame.lightsChanged || mInvalidateEveryFrame);
 }
 
 void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, const IndirectTarget& target)
@@ -64,10 +66,20 @@ void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, 
 
 std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats() const
 {
-    return {{"vpls", static_cast<double>(mRendered.validCount())},
-            {"vplsChanged", static_cast<double>(mRendered.changed.size())},
-            {"sampler total ms", mTimes.total},
-            {"sampler rays", static_cast<double>(mTimes.rays)},
+    // The sampler's stages in the columns of SMCIR Table 2 (measured on the worker thread, for the
+    // step whose VPL set this frame renders).
+    return {{"sampler: camera rays ms", mTimes.cameraRays},
+            {"sampler: candidate sampling ms", mTimes.candidateSampling},
+            {"sampler: candidate resampling ms", mTimes.candidateResampling},
+            {"sampler: indirect visibility ms", mTimes.indirectVisibility},
+            {"sampler: radiosity ms", mTimes.radiosity},
+            {"sampler: kNN ms", mTimes.knn},
+            {"sampler: selection ms", mTimes.selection},
+            {"sampler: total ms", mTimes.total},
+            {"sampler: rays", static_cast<double>(mTimes.rays)},
+            {"sampler: radiance estimates", static_cast<double>(mTimes.radianceEstimates)},
+            {"vpls", static_cast<double>(mRendered.validCount())},
+            {"vpls changed", static_cast<double>(mRendered.changed.size())},
             {"cpu gather ms", mGatherMilliseconds}};
 }
 

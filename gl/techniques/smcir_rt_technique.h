@@ -38,6 +38,7 @@ public:
 private:
     SMCIRParams mParams;
     float mClampDistance = 0.0f; // d_min as a fraction of the scene diagonal; G_max = 1/d_min^2 (0 = none)
+    bool mInvalidateEveryFrame = false; // re-estimate all radiances every frame (the moving-light cost)
     const Scene* mScene = nullptr;
     std::unique_ptr<RayScene> mRays;
     std::unique_ptr<SMCIRSampler> mSampler;

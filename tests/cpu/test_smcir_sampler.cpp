@@ -251,9 +251,10 @@ TEST_CASE("smcir parameters: paper defaults, one field list, eq. (8)", "[smcir][
                             "smcir.candidateFactor", "smcir.resampleRetries", "smcir.candidateDensityK",
                             "smcir.radiositySamples", "smcir.radiosityBounces", "smcir.knnRender",
                             "smcir.strongFraction", "smcir.cameraSamplesX", "smcir.cameraSamplesY",
-                            "smcir.warmupIterations", "smcir.seed"})
+                            "smcir.warmupIterations", "smcir.seed", "smcir.candidateRadianceSamples"})
         CHECK(values.count(key) == 1);
-    CHECK(values.size() == 15);
+    CHECK(values.size() == 16);
+    CHECK(values.at("smcir.candidateRadianceSamples") == "0"); // 0 = the paper: radiositySamples
     CHECK(values.at("smcir.vplCount") == "2048");
 
     ParamSetter setter(Settings{{"smcir.vplCount", "512"}, {"smcir.maxMoves", "8"}, {"smcir.seed", "7"}});
