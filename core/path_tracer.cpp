@@ -260,10 +260,20 @@ public:
         collectEmitters();
     }
 
+    // The punctual-light term at a given vertex 0 (evaluateDirectLight): it draws no random numbers,
+    // so it is the same for every path from that vertex and is computed once, on first use.
+    struct StartDirect {
+        bool computed = false;
+        glm::vec3 value{0.0f};
+    };
+
     glm::vec3 radiance(Ray ray, Pcg32& rng) const { return trace(ray, nullptr, rng, nullptr); }
     // The path of radiance(), or with `start` the path whose vertex 0 is *start (wo = its shading
     // normal, no intersection, no emission at vertex 0). Adds the Embree rays cast to *rays if given.
-    glm::vec3 trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays) const;
+    // With `startDirect` (only together with `start`), vertex 0's punctual-light term is taken from
+    // it, computed and counted (rays) by the first path that needs it.
+    glm::vec3 trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays,
+                    StartDirect* startDirect = nullptr) const;
 
 private:
     void collectEmitters();
@@ -444,7 +454,8 @@ std::uint64_t countDirectLightRays(const DirectLightSet& lights, const SurfacePo
     return count;
 }
 
-glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays) const
+glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays,
+                            StartDirect* startDirect) const
 {
     const int maxDepth = mParams.mode == Mode::Direct ? std::min(mParams.maxDepth, 1) : mParams.maxDepth;
     glm::vec3 radiance(0.0f);
@@ -462,6 +473,8 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
             s = *start; // a given vertex 0: its emission is not part of the estimate
             wo = s.normal;
         } else {
+            // Past maxDepth a vertex only adds emission: without emitters its intersection is moot.
+            if (depth >= maxDepth && mEmitters.empty()) break;
             const Hit hit = mRays.intersect(ray);
             if (rays) ++*rays;
             if (!hit.valid()) break; // no environment light
@@ -491,8 +504,18 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
         if (countsLightSamples(depth)) {
             glm::vec3 direct = sampleEmitters(s, wo, u[0], u[1], u[2], rays);
             if (!mPunctual.points.empty() || !mPunctual.directionals.empty()) {
-                direct += evaluateDirectLight(mRays, mPunctual, s, wo);
-                if (rays) *rays += countDirectLightRays(mPunctual, s);
+                if (depth == 0 && start && startDirect) {
+                    // The same deterministic value every path from this start would compute.
+                    if (!startDirect->computed) {
+                        startDirect->value = evaluateDirectLight(mRays, mPunctual, s, wo);
+                        startDirect->computed = true;
+                        if (rays) *rays += countDirectLightRays(mPunctual, s);
+                    }
+                    direct += startDirect->value;
+                } else {
+                    direct += evaluateDirectLight(mRays, mPunctual, s, wo);
+                    if (rays) *rays += countDirectLightRays(mPunctual, s);
+                }
             }
             radiance += throughput * direct;
         }
@@ -691,9 +714,12 @@ glm::vec3 ReflectedRadianceEstimator::estimate(const SurfacePoint& y, int sample
     diffuse.material.specular = 0.0f;
     std::uint64_t count = 0;
     glm::dvec3 sum(0.0);
+    // Vertex 0 is the same for every sample: its punctual-light term (no random numbers) is
+    // evaluated once and shared, the same value each path would compute (see the header).
+    Integrator::StartDirect startDirect;
     for (int s = 0; s < samples; ++s) {
         Pcg32 rng = sampleStream(seed, kReflectedRadianceStream, static_cast<std::uint32_t>(s));
-        const glm::vec3 L = mImpl->integrator.trace(Ray{}, &diffuse, rng, rays ? &count : nullptr);
+        const glm::vec3 L = mImpl->integrator.trace(Ray{}, &diffuse, rng, rays ? &count : nullptr, &startDirect);
         // A non-finite sample (a numerical accident) counts as black, deterministically.
         if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += glm::dvec3(L);
     }

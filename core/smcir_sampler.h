@@ -112,6 +112,12 @@
 //  thread-safe: call step() and invalidateRadiance() from one thread, read vpls() between steps
 //  (copy it to hand it to another thread), and do not change the scene's lights during a step.
 //
+//  Radiance paths share vertex 0: ReflectedRadianceEstimator evaluates the punctual lights at y
+//  once per estimate, not once per path, and skips the final emission-only ray when the scene has
+//  no emissive triangles (core/path_tracer.h: both exact, bit for bit; the seeds, and so every
+//  VPL's radiance, are unchanged). In the maze (8 point lights) this cut the radiance rays by
+//  about 30 % (static frame 724k -> 522k rays).
+//
 //  Costs per frame (defaults, I = 2048): |X| = 2304 primary rays, up to 2048 mail-box rays, up to
 //  2 * 2304 * 16 validation rays (only while VPLs are invalid), 32768 candidate rays, one kNN
 //  query per raw point, I radiance estimates of 16 paths (2I after invalidateRadiance), and two

@@ -20,6 +20,8 @@ void SMCIRRayTracedTechnique::visitParams(ParamVisitor& v)
             "VPL clamping: G is capped at 1/d^2 with d this fraction of the scene diagonal (0 = no clamping)");
     v.field("smcir.invalidateEveryFrame", mInvalidateEveryFrame,
             "re-estimate every VPL's radiance each frame, as when a light moves (to measure that cost)");
+    v.field("smcir.synchronous", mSynchronous,
+            "run the sampler step on the render thread (no overlap with the GPU frame; for clean timings)");
 }
 
 void SMCIRRayTracedTechnique::setScene(const SceneContext& context)
@@ -38,12 +40,15 @@ void SMCIRRayTracedTechnique::update(const FrameContext& frame)
         mSampler->initialize(frame.camera, aspect); // Alg. 1 line 1 and the warm-up iterations
         mWorker = std::make_unique<SMCIRWorker>(*mSampler);
         mInitialized = true;
+    } else if (mSynchronous) {
+        if (frame.lightsChanged || mInvalidateEveryFrame) mSampler->invalidateRadiance();
+        mSampler->step(frame.camera, aspect);
     } else {
         mWorker->wait();
     }
     mRendered = mSampler->vpls();
     mTimes = mSampler->lastTimes();
-    mWorker->submit(frame.camera, aspect, frame.lightsChanged || mInvalidateEveryFrame);
+    if (!mSynchronous) mWorker->submit(frame.camera, aspect, frame.lightsChanged || mInvalidateEveryFrame);
 }
 
 void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, const IndirectTarget& target)

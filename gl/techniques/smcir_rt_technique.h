@@ -8,7 +8,9 @@
 //              "lights changed" the worker re-estimates all radiances) -> worker runs meanwhile
 //   render():  gather the copied set at every pixel on the CPU, upload to the indirect target
 // So frame n shows the VPLs sampled for camera n-1 (one frame of latency, as in the paper's
-// pipelined implementation), and the result is deterministic for a seed.
+// pipelined implementation), and the result is deterministic for a seed. With
+// smcir.synchronous the step runs on the render thread instead (frame n shows step n): slower, but
+// the stage times are then measured without the GPU frame competing for the same cores.
 //
 // References: Hedman, Karras, Lehtinen, "Sequential Monte Carlo Instant Radiosity", TVCG 2017,
 // sections 3 and 4, Fig. 8.
@@ -39,6 +41,7 @@ private:
     SMCIRParams mParams;
     float mClampDistance = 0.0f; // d_min as a fraction of the scene diagonal; G_max = 1/d_min^2 (0 = none)
     bool mInvalidateEveryFrame = false; // re-estimate all radiances every frame (the moving-light cost)
+    bool mSynchronous = false;  // step on the render thread (no overlap): uncontended stage timings
     const Scene* mScene = nullptr;
     std::unique_ptr<RayScene> mRays;
     std::unique_ptr<SMCIRSampler> mSampler;
