@@ -49,6 +49,16 @@ struct TechniqueRun {
     std::vector<double> frameMilliseconds;
 };
 
+// Technique radiance minus its direct light: the indirect part, for indirect/clamped references.
+ImageRGBA32F indirectPart(const Renderer& renderer)
+{
+    ImageRGBA32F total = renderer.readRadiance();
+    const ImageRGBA32F direct = renderer.readDirect();
+    for (std::size_t i = 0; i < total.pixels.size(); ++i)
+        if (i % 4 != 3) total.pixels[i] -= direct.pixels[i];
+    return total;
+}
+
 std::string frameName(int frame)
 {
     char b[32];
@@ -71,7 +81,10 @@ int runCompare(const std::vector<std::string>& args)
     parser.value("fps", "F", "animation frames per second", "30");
     parser.value("width", "W", "image width", "320");
     parser.value("height", "H", "image height", "180");
-    parser.value("reference-mode", "M", "reference: full, direct, indirect or clamped", "full");
+    parser.value("reference-mode", "M",
+                 "reference: full, direct, indirect or clamped; techniques are compared by the same part "
+                 "(indirect and clamped: their radiance minus their direct light)",
+                 "full");
     parser.value("spp", "N", "reference samples per pixel", "256");
     parser.value("tracked", "N", "tracked pixels for the temporal metrics (SMCIR uses 8)", "8");
     parser.value("out", "DIR", "output directory (created)", "out/compare");
@@ -151,7 +164,10 @@ int runCompare(const std::vector<std::string>& args)
             Renderer& renderer = run.session->renderer();
             renderer.renderFrame(run.session->camera(), width, height, time);
             run.frameMilliseconds.push_back(renderer.timer().total());
-            ImageRGBA32F image = renderer.readRadiance();
+            // Compare like with like: the reference's mode decides which part of the technique's image.
+            ImageRGBA32F image = referenceParams.mode == PathTracerParams::Mode::Full     ? renderer.readRadiance()
+                                 : referenceParams.mode == PathTracerParams::Mode::Direct ? renderer.readDirect()
+                                                                                          : indirectPart(renderer);
             run.frameErrors.push_back(compareImages(image, reference, toneExposure));
             std::vector<double> values;
             for (glm::ivec2 p : tracked) values.push_back(luminanceAt(image, p));
@@ -233,7 +249,11 @@ int runCompare(const std::vector<std::string>& args)
          << frames << " frame(s) at " << fps << " fps; reference: Embree path tracer, mode "
          << htmlEscape(parser.get("reference-mode")) << ", " << referenceParams.spp << " spp (" << referencesRendered
          << " distinct reference frame(s)); tone mapping for |E|: Reinhard on luminance at exposure " << toneExposure
-         << ". Tracked pixels: " << tracked.size() << ".</p>\n";
+         << ". Tracked pixels: " << tracked.size() << ". Metrics compare "
+         << (referenceParams.mode == PathTracerParams::Mode::Full     ? "each technique's whole image"
+             : referenceParams.mode == PathTracerParams::Mode::Direct ? "each technique's direct light"
+                                                                      : "each technique's indirect light (its image minus its direct light)")
+         << " with the reference; the images show the whole display image.</p>\n";
     html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>mean |E| (tone-mapped)</th><th>RMSE</th><th>rel. MSE</th>"
          << "<th>mean luminance bias</th><th>avg |E| tracked</th><th>avg |E'| tracked (SMCIR eq. 10)</th>"
          << "<th>median frame [ms]</th></tr>\n"
