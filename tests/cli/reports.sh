@@ -48,6 +48,16 @@ assert d["techniques"][0]["temporalAbsEPrime"] >= 0
 PY
 echo "compare: one reference per animated frame"
 
+# Against an indirect reference, a technique is judged by its indirect part: direct has none.
+"$vplgi" compare --scene cornell --techniques direct --reference-mode indirect --width 24 --height 24 --spp 4 \
+  --cache "$cache" --out "$work/ind" > "$work/i.log" 2>&1
+python3 - "$work/ind/metrics.json" <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))["techniques"][0]
+assert abs(t["meanLuminanceBias"] + 1.0) < 1e-9, t
+PY
+echo "compare: indirect references judge the indirect part"
+
 "$vplgi" bench --scene maze --frames 2 --width 64 --height 36 --against direct > "$work/b.log" 2>&1
 grep -q "| gbuffer |" "$work/b.log"
 grep -q "ratio direct / direct" "$work/b.log"
