@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -29,6 +30,8 @@ void SMCIRParams::visitParams(ParamVisitor& v)
     v.field("smcir.candidateFactor", candidateFactor, 1, 256,
             "candidate rays per VPL, resampled down to I candidates (3.2.1: 16)");
     v.field("smcir.resampleRetries", resampleRetries, 0, 64, "redraws for duplicate candidates (3.2.1: 8)");
+    v.field("smcir.candidateDensityGrid", candidateDensityGrid,
+            "raw candidate density from uniform-grid counts (~k per cell) instead of kNN; faster, not in the paper");
     v.field("smcir.candidateDensityK", candidateDensityK, 1, 64,
             "k of the kNN density of the raw candidate points (resampling weights)");
     v.field("smcir.radiositySamples", radiositySamples, 1, 65536, "path-tracer samples per VPL radiance (3.2.3)");
@@ -363,10 +366,27 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::sampleCandidates(const std::v
         std::vector<glm::vec3> positions(hits.size());
         for (std::size_t i = 0; i < hits.size(); ++i)
             positions[i] = raw[hits[i]].surface.position;
-        const KNNIndex index(std::move(positions));
         const auto k = static_cast<std::size_t>(mParams.candidateDensityK);
         std::vector<double> weight(hits.size(), 1.0);
-        if (hits.size() > k) {
+        if (mParams.candidateDensityGrid) {
+            // Option: the area density of a point ~ count of points in its grid cell / cell area; the
+            // cell area is the same everywhere, so the weight is 1/count. Cells are sized for about k
+            // points each if the points covered a surface as large as their bounds' diagonal squared.
+            AABB box;
+            for (const glm::vec3& q : positions) box.extend(q);
+            const float cell = std::max(1e-6f, glm::length(box.extent()) /
+                                                   std::sqrt(static_cast<float>(positions.size()) / static_cast<float>(k)));
+            auto key = [&](const glm::vec3& q) {
+                const glm::ivec3 c = glm::ivec3(glm::floor((q - box.lower) / cell));
+                return (static_cast<std::uint64_t>(c.x & 0x1FFFFF) << 42u) |
+                       (static_cast<std::uint64_t>(c.y & 0x1FFFFF) << 21u) | static_cast<std::uint64_t>(c.z & 0x1FFFFF);
+            };
+            std::unordered_map<std::uint64_t, std::uint32_t> counts;
+            counts.reserve(positions.size());
+            for (const glm::vec3& q : positions) ++counts[key(q)];
+            for (std::size_t i = 0; i < positions.size(); ++i) weight[i] = 1.0 / counts[key(positions[i])];
+        } else if (hits.size() > k) {
+            const KNNIndex index(std::move(positions));
             const std::vector<float> r2 = index.neighbourDistancesSquared(k);
             std::copy(r2.begin(), r2.end(), weight.begin());
         }
@@ -468,11 +488,43 @@ void SMCIRSampler::estimateRenderingDensities()
     }
     // k of eq. (8) (or knnRender), among the other VPLs.
     const std::size_t n = positions.size();
-    const KNNIndex index(std::move(positions));
     const std::size_t k = n > 1 ? std::min(static_cast<std::size_t>(mRenderK), n - 1) : 0;
-    const std::vector<float> r2 = index.neighbourDistancesSquared(k);
-    for (std::size_t i = 0; i < slots.size(); ++i)
-        mSet.slots[slots[i]].density = k > 0 ? estimateKNNDensity(k, n, r2[i]) : 0.0f;
+    const std::size_t slotCount = mSet.slots.size();
+    if (mDensityPositions.size() != slotCount) {
+        mDensityPositions.assign(slotCount, glm::vec3(0.0f));
+        mDensityR2.assign(slotCount, 0.0f);
+        mDensityValid.assign(slotCount, 0);
+    }
+    // The points that appeared or disappeared since the last estimate (at most 2 M_max per frame).
+    std::vector<glm::vec3> changedPoints;
+    std::vector<char> slotChanged(slotCount, 0);
+    for (std::size_t slot = 0; slot < slotCount; ++slot) {
+        const VPL& vpl = mSet.slots[slot];
+        const bool was = mDensityValid[slot] != 0;
+        if (was == vpl.valid && (!vpl.valid || mDensityPositions[slot] == vpl.position)) continue;
+        slotChanged[slot] = 1;
+        if (was) changedPoints.push_back(mDensityPositions[slot]);
+        if (vpl.valid) changedPoints.push_back(vpl.position);
+    }
+    const KNNIndex index(std::move(positions));
+    const bool incremental = mDensityK == k;
+    parallelFor(slots.size(), 64, [&](std::size_t i) {
+        const std::uint32_t slot = slots[i];
+        bool requery = !incremental || slotChanged[slot] != 0;
+        for (std::size_t c = 0; !requery && c < changedPoints.size(); ++c) {
+            const glm::vec3 d = changedPoints[c] - mSet.slots[slot].position;
+            requery = glm::dot(d, d) <= mDensityR2[slot]; // inside (or on) the k-th neighbour sphere
+        }
+        // A point is its own nearest neighbour (distance 0): the k-th other is the (k+1)-th.
+        if (requery) mDensityR2[slot] = k > 0 ? index.kthDistanceSquared(mSet.slots[slot].position, k + 1) : 0.0f;
+    });
+    for (std::size_t slot = 0; slot < slotCount; ++slot) {
+        mDensityValid[slot] = mSet.slots[slot].valid ? 1 : 0;
+        mDensityPositions[slot] = mSet.slots[slot].position;
+    }
+    mDensityK = k;
+    for (std::uint32_t slot : slots)
+        mSet.slots[slot].density = k > 0 ? estimateKNNDensity(k, n, mDensityR2[slot]) : 0.0f;
 }
 
 // --- Slots ---------------------------------------------------------------------------------------

@@ -158,6 +158,8 @@ struct SMCIRParams {
     int candidateFactor = 16;       // candidateFactor * I candidate rays, resampled to I (3.2.1) [1, 256]
     int resampleRetries = 8;        // redraws for duplicates in the resampling (3.2.1) [0, 64]
     int candidateDensityK = 8;      // k of the kNN density of the raw candidate points [1, 64]
+    bool candidateDensityGrid = false; // approximate that density by point counts in a uniform grid of
+                                       // about k points per cell (O(N), no kNN). Not in the paper.
     int radiositySamples = 16;      // path-tracer samples per VPL radiance (3.2.3) [1, 65536]
     int radiosityBounces = 3;       // most reflections of those paths, counting the one at the VPL [1, 1024]
     int candidateRadianceSamples = 0; // samples for the candidates' radiance (line 7) [0, 65536]; 0 = the
@@ -249,6 +251,12 @@ private:
     const RayScene& mRays;
     SMCIRParams mParams;
     int mRenderK = 1;
+    // Line 19 is incremental and exact: per slot, the position and r_k^2 of the last estimate. A
+    // VPL's k-th neighbour distance can only change when a point was added or removed within it.
+    std::vector<glm::vec3> mDensityPositions;
+    std::vector<float> mDensityR2;
+    std::vector<char> mDensityValid;
+    std::size_t mDensityK = ~std::size_t{0}; // k of that estimate (a different k recomputes everything)
     float mOffset = 1e-4f;                        // ray offset along geometric normals [m]
     std::unique_ptr<ReflectedRadianceEstimator> mEstimator; // rebuilt each frame (lights may move)
     VPLSet mSet;

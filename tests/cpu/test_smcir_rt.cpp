@@ -70,9 +70,10 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     reference.jitterPixels = false;
     const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
 
-    auto errorWith = [&](int vplCount) {
+    auto errorWith = [&](int vplCount, bool gridDensity = false) {
         SMCIRParams params;
         params.vplCount = vplCount;
+        params.candidateDensityGrid = gridDensity;
         params.warmupIterations = 10;
         SMCIRSampler sampler(scene, rays, params);
         sampler.initialize(camera);
@@ -83,6 +84,10 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     };
     const ImageErrors small = errorWith(512);
     const ImageErrors large = errorWith(8192);
+    // The grid-count density option (not in the paper) must not make the distribution worse.
+    const ImageErrors grid = errorWith(512, true);
+    INFO("I = 512 with grid candidate density: rmse " << grid.rmse << ", |E| " << grid.meanAbsToneMapped);
+    CHECK(grid.rmse < 1.5 * small.rmse);
     INFO("I = 512: rmse " << small.rmse << ", |E| " << small.meanAbsToneMapped << ", bias " << small.meanRelativeLuminance);
     INFO("I = 8192: rmse " << large.rmse << ", |E| " << large.meanAbsToneMapped << ", bias " << large.meanRelativeLuminance);
     CHECK(large.rmse < small.rmse);

@@ -14,6 +14,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/knn.h"
 #include "core/params.h"
 #include "core/path_tracer.h"
 #include "core/ray_scene.h"
@@ -259,9 +260,11 @@ TEST_CASE("smcir parameters: paper defaults, one field list, eq. (8)", "[smcir][
                             "smcir.candidateFactor", "smcir.resampleRetries", "smcir.candidateDensityK",
                             "smcir.radiositySamples", "smcir.radiosityBounces", "smcir.knnRender",
                             "smcir.strongFraction", "smcir.cameraSamplesX", "smcir.cameraSamplesY",
-                            "smcir.warmupIterations", "smcir.seed", "smcir.candidateRadianceSamples"})
+                            "smcir.warmupIterations", "smcir.seed", "smcir.candidateRadianceSamples",
+                            "smcir.candidateDensityGrid"})
         CHECK(values.count(key) == 1);
-    CHECK(values.size() == 16);
+    CHECK(values.size() == 17);
+    CHECK(values.at("smcir.candidateDensityGrid") == "false"); // the paper: kNN
     CHECK(values.at("smcir.candidateRadianceSamples") == "0"); // 0 = the paper: radiositySamples
     CHECK(values.at("smcir.vplCount") == "2048");
 
@@ -517,6 +520,19 @@ TEST_CASE("smcir stable slots: at most M_max slots change per frame, others keep
         }
         if (frame < 12) CHECK(sampler.lastTimes().invalidated == 0);
         invalidated += sampler.lastTimes().invalidated;
+
+        // Line 19 updates densities incrementally; it must equal a full kNN re-estimate bit for bit.
+        std::vector<glm::vec3> positions;
+        for (const VPL& v : set.slots)
+            if (v.valid) positions.push_back(v.position);
+        const std::size_t n = positions.size();
+        const std::size_t k = static_cast<std::size_t>(computeRenderingK(params.vplCount));
+        const KNNIndex index(positions);
+        int densityMismatches = 0;
+        for (const VPL& v : set.slots)
+            if (v.valid && v.density != estimateKNNDensity(k, n, index.kthDistanceSquared(v.position, k + 1)))
+                ++densityMismatches;
+        CHECK(densityMismatches == 0);
     }
     CHECK(violations == 0);
     CHECK(invalidated > 0); // the walk did exercise 3.2.2
