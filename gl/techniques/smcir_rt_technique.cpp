@@ -1,6 +1,8 @@
 #include "smcir_rt_technique.h"
 
 #include <chrono>
+#include <cstdio>
+#include <functional>
 
 #include "core/params.h"
 
@@ -37,7 +39,16 @@ void SMCIRRayTracedTechnique::update(const FrameContext& frame)
 {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
     if (!mInitialized) {
-        mSampler->initialize(frame.camera, aspect); // Alg. 1 line 1 and the warm-up iterations
+        // Alg. 1 line 1 and the warm-up iterations; a progress bar on large scenes, where they take seconds.
+        std::function<void(int, int)> progress;
+        if (mScene->triangleCount() > 50000)
+            progress = [](int done, int total) {
+                const int width = 30, filled = total > 0 ? done * width / total : width;
+                std::fprintf(stderr, "\rsmcir warm-up [%.*s%*s] %d/%d", filled, "##############################",
+                             width - filled, "", done, total);
+                if (done == total) std::fprintf(stderr, "\n");
+            };
+        mSampler->initialize(frame.camera, aspect, progress);
         mWorker = std::make_unique<SMCIRWorker>(*mSampler);
         mInitialized = true;
     } else if (mSynchronous) {
