@@ -176,9 +176,10 @@ int runBench(const std::vector<std::string>& args)
         const double atIntersect = raysPerFrame / throughput.intersectPerSecond / wallSeconds;
         const double atOccluded = raysPerFrame / throughput.occludedPerSecond / wallSeconds;
         std::printf("%s: Embree throughput in this run %.2f Mrays/s (intersect), %.2f Mrays/s (occluded); sampler "
-                    "%.0f rays per frame in %.1f ms: ray efficiency %.2f (intersect rate) to %.2f (occluded rate)\n\n",
+                    "%.0f rays per frame in %.1f ms (%.2f Mrays/s): ray efficiency %.2f (intersect rate) to %.2f (occluded "
+                    "rate)\n\n",
                     r.technique.c_str(), throughput.intersectPerSecond * 1e-6, throughput.occludedPerSecond * 1e-6,
-                    raysPerFrame, total->second.median(), atIntersect, atOccluded);
+                    raysPerFrame, total->second.median(), raysPerFrame / wallSeconds * 1e-6, atIntersect, atOccluded);
         efficiencyJson = ", \"rayEfficiency\": {\"intersectMraysPerSecond\": " +
                          std::to_string(throughput.intersectPerSecond * 1e-6) +
                          ", \"occludedMraysPerSecond\": " + std::to_string(throughput.occludedPerSecond * 1e-6) +
