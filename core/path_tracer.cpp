@@ -11,6 +11,7 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include "basis.h"
 #include "direct_lights.h"
 #include "error.h"
 #include "params.h"
@@ -71,16 +72,6 @@ float maxComponent(const glm::vec3& c)
 bool isBlack(const glm::vec3& c)
 {
     return c.r <= 0.0f && c.g <= 0.0f && c.b <= 0.0f;
-}
-
-// Orthonormal t, b with (t, b, n) right-handed (Duff et al. 2017).
-void makeBasis(const glm::vec3& n, glm::vec3& t, glm::vec3& b)
-{
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float c = n.x * n.y * a;
-    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
 // Veach's power heuristic with beta = 2, for one sample from each of two strategies.

@@ -12,6 +12,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "basis.h"
 #include "error.h"
 #include "knn.h"
 #include "params.h"
@@ -101,16 +102,6 @@ float intensityOf(const glm::vec3& radiance, float density)
     const float L = luminance(radiance);
     if (density > 0.0f) return L / density;
     return L > 0.0f ? std::numeric_limits<float>::infinity() : 0.0f;
-}
-
-// Orthonormal t, b with (t, b, n) right-handed (Duff et al. 2017).
-void makeBasis(const glm::vec3& n, glm::vec3& t, glm::vec3& b)
-{
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float c = n.x * n.y * a;
-    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
 template <typename F>
