@@ -558,6 +558,29 @@ void SMCIRSampler::beginFrame()
     mEstimates = 0;
 }
 
+std::vector<SMCIRSampler::CameraPoint> SMCIRSampler::timedCameraPoints(const Camera& camera, float aspect)
+{
+    const Clock::time_point t = Clock::now();
+    std::vector<CameraPoint> points;
+    castCameraRays(camera, aspect, points);
+    mTimes.cameraRays = millisecondsSince(t);
+    mTimes.cameraPoints = static_cast<int>(points.size());
+    return points;
+}
+
+std::vector<SMCIRSampler::Candidate> SMCIRSampler::candidatesWithRadiance(const std::vector<CameraPoint>& points)
+{
+    // Lines 5-6: candidate rays from X, resampled to an area-uniform set (3.2.1).
+    std::vector<Candidate> candidates = sampleCandidates(points, mTimes.candidateSampling, mTimes.candidateResampling);
+    mTimes.candidates = static_cast<int>(candidates.size());
+    // Line 7: their radiance; the estimator reads the lights as they are now.
+    const Clock::time_point t = Clock::now();
+    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, mParams.radiosityBounces);
+    estimateCandidateRadiance(candidates);
+    mTimes.radiosity = millisecondsSince(t);
+    return candidates;
+}
+
 void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::function<void(int, int)>& progress)
 {
     require(aspect > 0.0f && std::isfinite(aspect), "smcir: aspect must be > 0");
@@ -568,22 +591,13 @@ void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::fun
         clearSlot(slot);
 
     // Line 1: INITIALIZEVPLS, sampled "identically to how we generate candidate VPLs" (3.2).
+    const std::vector<CameraPoint> points = timedCameraPoints(camera, aspect);
+    std::vector<Candidate> candidates = candidatesWithRadiance(points);
     Clock::time_point t = Clock::now();
-    std::vector<CameraPoint> points;
-    castCameraRays(camera, aspect, points);
-    mTimes.cameraRays = millisecondsSince(t);
-    mTimes.cameraPoints = static_cast<int>(points.size());
-    std::vector<Candidate> candidates =
-        sampleCandidates(points, mTimes.candidateSampling, mTimes.candidateResampling);
-    mTimes.candidates = static_cast<int>(candidates.size());
-    t = Clock::now();
-    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, mParams.radiosityBounces);
-    estimateCandidateRadiance(candidates);
-    mTimes.radiosity = millisecondsSince(t);
     for (std::size_t i = 0; i < candidates.size() && i < mSet.slots.size(); ++i)
         assignSlot(static_cast<std::uint32_t>(i), candidates[i], points);
     estimateStaleRadiance(); // only screened candidates (candidateRadianceSamples) are stale here
-    mTimes.radiosity = millisecondsSince(t);
+    mTimes.radiosity += millisecondsSince(t);
     t = Clock::now();
     estimateRenderingDensities();
     mTimes.knn = millisecondsSince(t);
@@ -614,27 +628,15 @@ void SMCIRSampler::step(const Camera& camera, float aspect)
     const std::size_t slotCount = mSet.slots.size();
 
     // Line 3: X <- RAYCASTFROMCAMERA().
-    Clock::time_point t = Clock::now();
-    std::vector<CameraPoint> points;
-    castCameraRays(camera, aspect, points);
-    mTimes.cameraRays = millisecondsSince(t);
-    mTimes.cameraPoints = static_cast<int>(points.size());
+    const std::vector<CameraPoint> points = timedCameraPoints(camera, aspect);
 
     // Line 4: INVALID <- Y \ INDIRECTLYVISIBLEVPLS(X, Y).
-    t = Clock::now();
+    Clock::time_point t = Clock::now();
     const std::vector<char> validated = resolveIndirectVisibility(camera, aspect, points);
     mTimes.indirectVisibility = millisecondsSince(t);
 
-    // Lines 5-6: Y^ <- RESAMPLECANDIDATES(RAYCASTFROMPOINTS(X)).
-    std::vector<Candidate> candidates =
-        sampleCandidates(points, mTimes.candidateSampling, mTimes.candidateResampling);
-    mTimes.candidates = static_cast<int>(candidates.size());
-
-    // Line 7: ESTIMATERADIOSITIES(Y^). The estimator reads the lights as they are now.
-    t = Clock::now();
-    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, mParams.radiosityBounces);
-    estimateCandidateRadiance(candidates);
-    mTimes.radiosity = millisecondsSince(t);
+    // Lines 5-7: Y^ <- RESAMPLECANDIDATES(RAYCASTFROMPOINTS(X)); ESTIMATERADIOSITIES(Y^).
+    std::vector<Candidate> candidates = candidatesWithRadiance(points);
 
     // Line 8: ESTIMATEPROBABILITYDENSITIES(Y^), k = 1 against the current Y.
     t = Clock::now();

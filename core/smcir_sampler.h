@@ -236,6 +236,8 @@ private:
 
     void beginFrame();
     void castCameraRays(const Camera& camera, float aspect, std::vector<CameraPoint>& points);
+    std::vector<CameraPoint> timedCameraPoints(const Camera& camera, float aspect); // line 3, timed
+    std::vector<Candidate> candidatesWithRadiance(const std::vector<CameraPoint>& points); // lines 5-7, timed
     std::vector<char> resolveIndirectVisibility(const Camera& camera, float aspect,
                                                 const std::vector<CameraPoint>& points);
     std::vector<Candidate> sampleCandidates(const std::vector<CameraPoint>& points, double& samplingMs,

@@ -81,6 +81,29 @@ double agreement(const ImageRGBA32F& gpu, const ImageRGBA32F& cpu, double tolera
     return lit > 0 ? static_cast<double>(agreeing) / lit : 0.0;
 }
 
+// An axis-aligned box with outward faces (flat normals, counter-clockwise seen from outside).
+Mesh boxMesh(glm::vec3 lower, glm::vec3 upper, int material)
+{
+    Mesh mesh;
+    mesh.material = material;
+    const glm::vec3 c[8] = {{lower.x, lower.y, lower.z}, {upper.x, lower.y, lower.z}, {upper.x, upper.y, lower.z},
+                            {lower.x, upper.y, lower.z}, {lower.x, lower.y, upper.z}, {upper.x, lower.y, upper.z},
+                            {upper.x, upper.y, upper.z}, {lower.x, upper.y, upper.z}};
+    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+    for (const auto& f : faces) {
+        const std::uint32_t base = static_cast<std::uint32_t>(mesh.vertices.size());
+        const glm::vec3 n = glm::normalize(glm::cross(c[f[1]] - c[f[0]], c[f[2]] - c[f[0]]));
+        for (int k = 0; k < 4; ++k) {
+            Vertex v;
+            v.position = c[f[k]];
+            v.normal = n;
+            mesh.vertices.push_back(v);
+        }
+        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+    }
+    return mesh;
+}
+
 } // namespace
 
 TEST_CASE("furnace: direct radiance equals rho I0 / (pi R^2)", "[image][furnace]")
@@ -164,24 +187,7 @@ TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluat
         return static_cast<int>(scene.materials.size()) - 1;
     };
     auto addBox = [&](glm::vec3 lower, glm::vec3 upper, int mat) {
-        Mesh mesh;
-        mesh.material = mat;
-        const glm::vec3 c[8] = {{lower.x, lower.y, lower.z}, {upper.x, lower.y, lower.z}, {upper.x, upper.y, lower.z},
-                                {lower.x, upper.y, lower.z}, {lower.x, lower.y, upper.z}, {upper.x, lower.y, upper.z},
-                                {upper.x, upper.y, upper.z}, {lower.x, upper.y, upper.z}};
-        const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
-        for (const auto& f : faces) {
-            std::uint32_t base = static_cast<std::uint32_t>(mesh.vertices.size());
-            glm::vec3 n = glm::normalize(glm::cross(c[f[1]] - c[f[0]], c[f[2]] - c[f[0]]));
-            for (int k = 0; k < 4; ++k) {
-                Vertex v;
-                v.position = c[f[k]];
-                v.normal = n;
-                mesh.vertices.push_back(v);
-            }
-            for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
-        }
-        scene.meshes.push_back(mesh);
+        scene.meshes.push_back(boxMesh(lower, upper, mat));
         scene.instances.push_back(Instance{static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
     };
     addBox({-5, -0.1f, -5}, {5, 0, 5}, material({0.6f, 0.6f, 0.6f}, 0.0f, 1.0f, 0.0f));
@@ -237,23 +243,7 @@ TEST_CASE("moving one light re-renders only its shadow cube, with the same image
     params.segments = 48;
     Scene scene = makeFurnace(params);
     // An occluder inside the sphere so that shadows matter, and two more point lights.
-    Mesh box = scene.meshes[0];
-    box.vertices.clear();
-    box.indices.clear();
-    const glm::vec3 c[8] = {{-0.2f, -0.2f, -0.6f}, {0.2f, -0.2f, -0.6f}, {0.2f, 0.2f, -0.6f}, {-0.2f, 0.2f, -0.6f},
-                            {-0.2f, -0.2f, -0.4f}, {0.2f, -0.2f, -0.4f}, {0.2f, 0.2f, -0.4f}, {-0.2f, 0.2f, -0.4f}};
-    const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
-    for (const auto& f : faces) {
-        std::uint32_t base = static_cast<std::uint32_t>(box.vertices.size());
-        glm::vec3 n = glm::normalize(glm::cross(c[f[1]] - c[f[0]], c[f[2]] - c[f[0]]));
-        for (int k = 0; k < 4; ++k) {
-            Vertex v;
-            v.position = c[f[k]];
-            v.normal = n;
-            box.vertices.push_back(v);
-        }
-        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) box.indices.push_back(base + i);
-    }
+    const Mesh box = boxMesh({-0.2f, -0.2f, -0.6f}, {0.2f, 0.2f, -0.4f}, scene.meshes[0].material);
     scene.meshes.push_back(box);
     scene.instances.push_back(Instance{1, glm::mat4(1.0f)});
     for (glm::vec3 p : {glm::vec3(0.3f, 0.2f, 0.0f), glm::vec3(-0.3f, -0.1f, 0.2f)}) {
