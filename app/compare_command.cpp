@@ -124,6 +124,9 @@ int runCompare(const std::vector<std::string>& args)
     std::filesystem::create_directories(outDir + "/images");
     context = gl::createHeadlessContext();
     for (TechniqueRun& run : runs) run.session->createRenderer();
+    // What the reference must simulate to be comparable (SMCIR: untextured bounces, the same clamp).
+    for (TechniqueRun& run : runs)
+        run.session->renderer().technique().configureReference(referenceParams, referenceSetter.usedKeys());
 
     // The reference follows the first session's scene state (all sessions animate identically).
     Session& lead = *runs.front().session;

@@ -56,8 +56,14 @@ std::uint64_t hashSceneContent(const Scene& scene)
         h.value(img.height);
         h.bytes(img.rgba.data(), img.rgba.size());
     }
-    h.value(scene.lights.size());
-    for (const Light& l : scene.lights) {
+    hashLights(h, scene.lights);
+    return h.digest();
+}
+
+void hashLights(Hasher& h, const std::vector<Light>& lights)
+{
+    h.value(lights.size());
+    for (const Light& l : lights) {
         h.value(l.type);
         h.value(l.position);
         h.value(l.direction);
@@ -66,6 +72,12 @@ std::uint64_t hashSceneContent(const Scene& scene)
         h.value(l.innerConeAngle);
         h.value(l.outerConeAngle);
     }
+}
+
+std::uint64_t hashLights(const std::vector<Light>& lights)
+{
+    Hasher h;
+    hashLights(h, lights);
     return h.digest();
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "scene.h"
 
@@ -24,5 +25,8 @@ private:
 
 std::uint64_t hashSceneContent(const Scene& scene);
 void hashCamera(Hasher& hasher, const Camera& camera);
+// Everything about the lights that changes what they emit (type, placement, colour, intensity, cones).
+void hashLights(Hasher& hasher, const std::vector<Light>& lights);
+std::uint64_t hashLights(const std::vector<Light>& lights);
 
 } // namespace vplgi

@@ -76,9 +76,14 @@ std::uint32_t hash32(std::uint32_t x)
 
 DirectLightSet buildDirectLights(const Scene& scene, const DirectLightParams& params)
 {
+    return buildDirectLights(scene, scene.lights, params);
+}
+
+DirectLightSet buildDirectLights(const Scene& scene, const std::vector<Light>& lights, const DirectLightParams& params)
+{
     require(params.emitterSamples >= 1, "direct.emitterSamples must be >= 1");
     DirectLightSet set;
-    for (const Light& light : scene.lights) {
+    for (const Light& light : lights) {
         glm::vec3 intensity = light.radiantIntensity();
         if (light.type == LightType::Directional) {
             shared::DirectionalEmitter e;

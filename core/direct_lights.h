@@ -22,5 +22,8 @@ struct DirectLightSet {
 };
 
 DirectLightSet buildDirectLights(const Scene& scene, const DirectLightParams& params);
+// The same with `lights` in place of scene.lights (a snapshot taken by another thread: the scene's
+// geometry and materials are read, its light list is not).
+DirectLightSet buildDirectLights(const Scene& scene, const std::vector<Light>& lights, const DirectLightParams& params);
 
 } // namespace vplgi

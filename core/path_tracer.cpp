@@ -41,6 +41,9 @@ void PathTracerParams::visitParams(ParamVisitor& v)
     if (budget != static_cast<float>(timeBudgetSeconds)) timeBudgetSeconds = budget;
     v.field("reference.progress", progress, "print one line per pass to stderr");
     v.field("reference.jitterPixels", jitterPixels, "spread samples over the pixel (false: pixel centres only)");
+    v.field("reference.untexturedBounces", untexturedBounces,
+            "beyond the primary hit, mean material albedos and no normal maps (SMCIR 5: the reference for VPLs "
+            "made on an untextured scene)");
 }
 
 namespace {
@@ -204,12 +207,14 @@ constexpr int kNumbersPerVertex = 7;
 
 class Integrator {
 public:
-    Integrator(const Scene& scene, const RayScene& rays, const PathTracerParams& params)
+    // `lights` in place of scene.lights (a snapshot: the scene's light list is never read).
+    Integrator(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights, const PathTracerParams& params)
         : mScene(scene), mRays(rays), mParams(params), mOffset(1e-4f * rays.sceneScale())
     {
+        if (params.untexturedBounces) mUntextured = computeUntexturedMaterials(scene);
         // Punctual and directional lights exactly as the GPU direct pass gets them; the cosine point
         // samples standing in for emissive triangles are dropped (triangles are sampled by area here).
-        DirectLightSet all = buildDirectLights(scene, DirectLightParams{});
+        DirectLightSet all = buildDirectLights(scene, lights, DirectLightParams{});
         mPunctual.directionals = all.directionals;
         for (const shared::PointEmitter& e : all.points)
             if (static_cast<int>(e.positionProfile.w + 0.5f) != shared::kProfileCosine) mPunctual.points.push_back(e);
@@ -270,6 +275,7 @@ private:
     const PathTracerParams& mParams;
     const float mOffset; // ray offset along geometric normals [m]
     DirectLightSet mPunctual;
+    std::optional<UntexturedMaterials> mUntextured; // untexturedBounces: the materials of vertices >= 1
     std::vector<EmissiveTriangle> mEmitters;
     std::vector<int> mFirstEmitter; // per instance: index of its triangle 0 in mEmitters, -1 = none
     std::vector<double> mPowerCdf;  // running sum of mEmitters' power
@@ -435,7 +441,7 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
             if (rays) ++*rays;
             if (!hit.valid()) break; // no environment light
             wo = -ray.direction;
-            s = surfaceAt(mScene, hit, wo);
+            s = surfaceAt(mScene, hit, wo, depth >= 1 && mUntextured ? &*mUntextured : nullptr);
 
             if (mParams.mode == Mode::Clamped && depth == 1) {
                 // SMCIR Sec. 5.4: clamp G of the segment x0 -> x1 as VPL methods clamp it (MATH.md 1.2 a).
@@ -556,7 +562,7 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
     const Clock::time_point start = Clock::now();
     auto elapsed = [&start] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
-    const Integrator integrator(scene, rays, params);
+    const Integrator integrator(scene, rays, scene.lights, params);
     const CameraRays cameraRays(camera, width, height);
     const std::size_t pixelCount = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     std::vector<double> sums(3 * pixelCount, 0.0);
@@ -627,21 +633,22 @@ struct ReflectedRadianceEstimator::Impl {
     PathTracerParams params; // declared before the integrator, which keeps a reference to it
     Integrator integrator;
 
-    Impl(const Scene& scene, const RayScene& rays, const PathTracerParams& p)
-        : params(p), integrator(scene, rays, params)
+    Impl(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights, const PathTracerParams& p)
+        : params(p), integrator(scene, rays, lights, params)
     {
     }
 };
 
 namespace {
 
-PathTracerParams reflectedRadianceParams(int maxBounces)
+PathTracerParams reflectedRadianceParams(int maxBounces, bool untextured)
 {
     require(maxBounces >= 1 && maxBounces <= 1024, "reflected radiance: maxBounces must be in [1, 1024]");
     PathTracerParams params;
     params.mode = Mode::Full; // vertex 0's emission is skipped by trace() itself
     params.maxDepth = maxBounces;
     params.rrStartDepth = 3; // as the reference's default: Russian roulette from vertex 3 on
+    params.untexturedBounces = untextured;
     return params;
 }
 
@@ -651,7 +658,13 @@ constexpr std::uint32_t kReflectedRadianceStream = 0xFFFFFFFFu;
 } // namespace
 
 ReflectedRadianceEstimator::ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, int maxBounces)
-    : mImpl(std::make_unique<Impl>(scene, rays, reflectedRadianceParams(maxBounces)))
+    : ReflectedRadianceEstimator(scene, rays, scene.lights, maxBounces, false)
+{
+}
+
+ReflectedRadianceEstimator::ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays,
+                                                       const std::vector<Light>& lights, int maxBounces, bool untextured)
+    : mImpl(std::make_unique<Impl>(scene, rays, lights, reflectedRadianceParams(maxBounces, untextured)))
 {
     assert(&rays.scene() == &scene && "the RayScene must be built from this scene");
 }

@@ -121,6 +121,7 @@
 #include "image_io.h"
 #include "ray_scene.h"
 #include "scene.h"
+#include "surface.h"
 
 namespace vplgi {
 
@@ -141,6 +142,8 @@ struct PathTracerParams {
     bool progress = false;        // print a line per pass to stderr
     bool jitterPixels = true;     // false: every sample through the pixel centre, as a rasterizer
                                   // without MSAA samples (for GPU-vs-reference checks at edges)
+    bool untexturedBounces = false; // vertices after the primary hit use UntexturedMaterials (mean
+                                    // albedos, no normal maps): SMCIR 5's reference for its VPLs
 
     // Keys "reference.<field>": spp, maxDepth, rrStartDepth, mode (0 full, 1 direct, 2 indirect,
     // 3 clamped), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress.
@@ -167,12 +170,18 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
 // estimates the diffuse exitant radiance L(y) [W/(m^2 sr)] at surface points: (rho_d/pi) times the
 // irradiance at y, rho_d = (1 - metallic) * baseColor, with next-event estimation and MIS as
 // renderReference, light reflected at most maxBounces times including at y, no emission of y.
-// Thread-safe: estimate() may run concurrently. The scene must outlive the estimator and its
-// lights must not change while it lives.
+// Thread-safe: estimate() may run concurrently. The scene must outlive the estimator; its geometry
+// and materials must not change while it lives (its lights may, when a snapshot was given).
 class ReflectedRadianceEstimator {
 public:
     // maxBounces in [1, 1024]: 1 = direct light at y, 3 = SMCIR's default. Throws Error otherwise.
+    // Reads scene.lights now (on the calling thread).
     ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, int maxBounces);
+    // With a snapshot of the lights instead of scene.lights (the scene's light list is never read,
+    // so another thread may animate it meanwhile), and with `untextured` the paths' vertices after y
+    // use UntexturedMaterials (SMCIR 5).
+    ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights,
+                               int maxBounces, bool untextured);
     ~ReflectedRadianceEstimator();
     ReflectedRadianceEstimator(const ReflectedRadianceEstimator&) = delete;
     ReflectedRadianceEstimator& operator=(const ReflectedRadianceEstimator&) = delete;

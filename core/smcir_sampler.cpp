@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "basis.h"
+#include "content_hash.h"
 #include "error.h"
 #include "knn.h"
 #include "params.h"
@@ -34,7 +35,7 @@ void SMCIRParams::visitParams(ParamVisitor& v)
     v.field("smcir.candidateDensityGrid", candidateDensityGrid,
             "raw candidate density from uniform-grid counts (~k per cell) instead of kNN; faster, not in the paper");
     v.field("smcir.candidateDensityK", candidateDensityK, 1, 64,
-            "k of the kNN density of the raw candidate points (resampling weights)");
+            "k of the kNN density of the raw candidate points (resampling weights; 3.2.4: 1)");
     v.field("smcir.radiositySamples", radiositySamples, 1, 65536, "path-tracer samples per VPL radiance (3.2.3)");
     v.field("smcir.candidateRadianceSamples", candidateRadianceSamples, 0, 65536,
             "samples for candidate radiance screening (line 7); 0 = radiositySamples as in the paper");
@@ -49,6 +50,21 @@ void SMCIRParams::visitParams(ParamVisitor& v)
     v.field("smcir.warmupIterations", warmupIterations, 0, 100000,
             "frames run before the first one is shown (paper: 100)");
     v.field("smcir.seed", seed, "random stream seed (same seed and cameras, same VPLs)");
+    v.field("smcir.texturedVPLs", texturedVPLs,
+            "VPLs on the textured scene (albedo textures, normal maps); false = the paper's untextured scene "
+            "with mean material albedos (section 5). true is not in the paper");
+    v.field("smcir.clampScale", clampScale, 0.0f, 1000.0f,
+            "VPL clamping: G_max = 1/d^2 with d = clampScale * D / sqrt(I) (D the scene diagonal: d scales with "
+            "the expected VPL spacing); 0 = none");
+    v.field("smcir.invalidateEveryFrame", reestimateEveryFrame,
+            "re-estimate every VPL's radiance each frame, as when a light moves (measures that cost)");
+}
+
+float computeClampGeometry(const SMCIRParams& params, float sceneDiagonal)
+{
+    if (!(params.clampScale > 0.0f) || !(sceneDiagonal > 0.0f)) return 0.0f;
+    const float d = params.clampScale * sceneDiagonal / std::sqrt(static_cast<float>(params.vplCount));
+    return 1.0f / (d * d);
 }
 
 int computeRenderingK(int vplCount)
@@ -129,7 +145,8 @@ struct SMCIRSampler::SlotState {
     glm::vec3 origin{0.0f};         // the VPL lifted off its surface (end of visibility rays)
     CameraPoint associated;         // 3.2.2 mail box: a camera-visible point that sees the VPL
     std::uint32_t radianceSeed = 0; // 3.2.3: kept for the VPL's life
-    std::uint64_t radianceEpoch = 0;
+    std::uint64_t radianceKey = 0;  // radiance cache: the lights (radianceKeyOf) the value was computed for
+    bool screened = false;          // the value is a candidateRadianceSamples screening estimate
 };
 
 // A VPL candidate (an element of Y^).
@@ -161,6 +178,7 @@ SMCIRSampler::SMCIRSampler(const Scene& scene, const RayScene& rays, const SMCIR
     require(p.cameraSamplesX >= 1 && p.cameraSamplesY >= 1, "smcir.cameraSamplesX/Y must be >= 1");
     require(p.warmupIterations >= 0, "smcir.warmupIterations must be >= 0");
     require(&rays.scene() == &scene, "smcir: the RayScene must be built from the sampler's scene");
+    if (!p.texturedVPLs) mUntextured = computeUntexturedMaterials(scene);
     mRenderK = p.knnRender > 0 ? p.knnRender : computeRenderingK(p.vplCount);
     mOffset = 1e-4f * rays.sceneScale(); // as the path tracer
     mSet.slots.assign(static_cast<std::size_t>(p.vplCount), VPL{});
@@ -169,9 +187,9 @@ SMCIRSampler::SMCIRSampler(const Scene& scene, const RayScene& rays, const SMCIR
 
 SMCIRSampler::~SMCIRSampler() = default;
 
-void SMCIRSampler::invalidateRadiance()
+const UntexturedMaterials* SMCIRSampler::vplMaterials() const
 {
-    ++mRadianceEpoch;
+    return mParams.texturedVPLs ? nullptr : &mUntextured;
 }
 
 // --- Alg. 1 line 3: X <- RAYCASTFROMCAMERA() -----------------------------------------------------
@@ -208,7 +226,7 @@ void SMCIRSampler::castCameraRays(const Camera& camera, float aspect, std::vecto
         const Hit hit = mRays.intersect(ray);
         if (!hit.valid()) return;
         const glm::vec3 wo = -ray.direction;
-        const SurfacePoint s = surfaceAt(mScene, hit, wo);
+        const SurfacePoint s = surfaceAt(mScene, hit, wo, vplMaterials());
         if (glm::dot(s.geometricNormal, wo) <= 0.0f) return; // the back of a single-sided surface: culled
         CameraPoint& point = found[cell];
         point.position = s.position;
@@ -331,7 +349,7 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::sampleCandidates(const std::v
         const Hit hit = mRays.intersect(ray);
         if (!hit.valid()) return;
         const glm::vec3 wo = -ray.direction;
-        const SurfacePoint s = surfaceAt(mScene, hit, wo);
+        const SurfacePoint s = surfaceAt(mScene, hit, wo, vplMaterials());
         if (glm::dot(s.geometricNormal, wo) <= 0.0f) return; // the back of a single-sided surface reflects nothing
         Candidate& c = raw[r];
         c.surface = s;
@@ -439,14 +457,15 @@ void SMCIRSampler::estimateStaleRadiance()
 {
     std::vector<std::uint32_t> stale;
     for (std::size_t slot = 0; slot < mSlots.size(); ++slot)
-        if (mSet.slots[slot].valid && mSlots[slot].radianceEpoch != mRadianceEpoch)
+        if (mSet.slots[slot].valid && (mSlots[slot].screened || mSlots[slot].radianceKey != mRadianceKey))
             stale.push_back(static_cast<std::uint32_t>(slot));
     std::vector<std::uint64_t> rays(stale.size(), 0);
     parallelFor(stale.size(), 4, [&](std::size_t i) {
         const std::uint32_t slot = stale[i];
         mSet.slots[slot].radiance =
             mEstimator->estimate(mSlots[slot].surface, mParams.radiositySamples, mSlots[slot].radianceSeed, &rays[i]);
-        mSlots[slot].radianceEpoch = mRadianceEpoch;
+        mSlots[slot].radianceKey = mRadianceKey;
+        mSlots[slot].screened = false;
     });
     mRayCount += std::accumulate(rays.begin(), rays.end(), std::uint64_t{0});
     mEstimates += static_cast<int>(stale.size());
@@ -534,7 +553,8 @@ void SMCIRSampler::assignSlot(std::uint32_t slot, const Candidate& candidate, co
     state.associated = points[candidate.cameraPoint]; // 3.2.2: the point it was generated from
     state.radianceSeed = candidate.seed;
     // A screened candidate (fewer samples than a VPL gets) is re-estimated in full by line 18.
-    state.radianceEpoch = candidateSamples() == mParams.radiositySamples ? mRadianceEpoch : kStaleEpoch;
+    state.radianceKey = mRadianceKey;
+    state.screened = candidateSamples() != mParams.radiositySamples;
 }
 
 int SMCIRSampler::candidateSamples() const
@@ -551,8 +571,14 @@ void SMCIRSampler::clearSlot(std::uint32_t slot)
 
 // --- Alg. 1 line 1 and the frame loop --------------------------------------------------------------
 
-void SMCIRSampler::beginFrame()
+void SMCIRSampler::beginFrame(const FrameSnapshot& snapshot)
 {
+    require(snapshot.aspect > 0.0f && std::isfinite(snapshot.aspect), "smcir: aspect must be > 0");
+    // 3.2.3's cache is keyed by the lights it was computed for: a value computed for other lights is
+    // stale, whoever changed them. The measurement aid invalidateEveryFrame makes every frame a new key.
+    mRadianceKey = hashLights(snapshot.lights);
+    if (mParams.reestimateEveryFrame) mRadianceKey = mix64(mRadianceKey ^ (mFrame + 1));
+
     mTimes = SMCIRStageTimes{};
     mRayCount = 0;
     mEstimates = 0;
@@ -568,14 +594,16 @@ std::vector<SMCIRSampler::CameraPoint> SMCIRSampler::timedCameraPoints(const Cam
     return points;
 }
 
-std::vector<SMCIRSampler::Candidate> SMCIRSampler::candidatesWithRadiance(const std::vector<CameraPoint>& points)
+std::vector<SMCIRSampler::Candidate> SMCIRSampler::candidatesWithRadiance(const std::vector<CameraPoint>& points,
+                                                                          const std::vector<Light>& lights)
 {
     // Lines 5-6: candidate rays from X, resampled to an area-uniform set (3.2.1).
     std::vector<Candidate> candidates = sampleCandidates(points, mTimes.candidateSampling, mTimes.candidateResampling);
     mTimes.candidates = static_cast<int>(candidates.size());
-    // Line 7: their radiance; the estimator reads the lights as they are now.
+    // Line 7: their radiance, lit by this frame's snapshot of the lights.
     const Clock::time_point t = Clock::now();
-    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, mParams.radiosityBounces);
+    mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, lights, mParams.radiosityBounces,
+                                                              !mParams.texturedVPLs);
     estimateCandidateRadiance(candidates);
     mTimes.radiosity = millisecondsSince(t);
     return candidates;
@@ -583,16 +611,27 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::candidatesWithRadiance(const 
 
 void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::function<void(int, int)>& progress)
 {
-    require(aspect > 0.0f && std::isfinite(aspect), "smcir: aspect must be > 0");
+    initialize(FrameSnapshot::of(mScene, camera, aspect), progress);
+}
+
+void SMCIRSampler::step(const Camera& camera, float aspect)
+{
+    step(FrameSnapshot::of(mScene, camera, aspect));
+}
+
+void SMCIRSampler::initialize(const FrameSnapshot& snapshot, const std::function<void(int, int)>& progress)
+{
+    const Camera& camera = snapshot.camera;
+    const float aspect = snapshot.aspect;
     const Clock::time_point start = Clock::now();
-    beginFrame();
     mFrame = 0;
+    beginFrame(snapshot);
     for (std::uint32_t slot = 0; slot < mSet.slots.size(); ++slot)
         clearSlot(slot);
 
     // Line 1: INITIALIZEVPLS, sampled "identically to how we generate candidate VPLs" (3.2).
     const std::vector<CameraPoint> points = timedCameraPoints(camera, aspect);
-    std::vector<Candidate> candidates = candidatesWithRadiance(points);
+    std::vector<Candidate> candidates = candidatesWithRadiance(points, snapshot.lights);
     Clock::time_point t = Clock::now();
     for (std::size_t i = 0; i < candidates.size() && i < mSet.slots.size(); ++i)
         assignSlot(static_cast<std::uint32_t>(i), candidates[i], points);
@@ -608,7 +647,7 @@ void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::fun
 
     // "we run 100 iterations of the algorithm before rendering the first frame" (3.2).
     for (int i = 0; i < mParams.warmupIterations; ++i) {
-        step(camera, aspect);
+        step(snapshot);
         if (progress) progress(i + 1, mParams.warmupIterations);
     }
     // The renderer has seen nothing yet: every slot is new to it.
@@ -618,13 +657,14 @@ void SMCIRSampler::initialize(const Camera& camera, float aspect, const std::fun
     ++mSet.generation;
 }
 
-void SMCIRSampler::step(const Camera& camera, float aspect)
+void SMCIRSampler::step(const FrameSnapshot& snapshot)
 {
     require(mInitialized, "smcir: step() before initialize()");
-    require(aspect > 0.0f && std::isfinite(aspect), "smcir: aspect must be > 0");
+    const Camera& camera = snapshot.camera;
+    const float aspect = snapshot.aspect;
     const Clock::time_point start = Clock::now();
-    beginFrame();
     ++mFrame;
+    beginFrame(snapshot);
     const std::size_t slotCount = mSet.slots.size();
 
     // Line 3: X <- RAYCASTFROMCAMERA().
@@ -636,7 +676,7 @@ void SMCIRSampler::step(const Camera& camera, float aspect)
     mTimes.indirectVisibility = millisecondsSince(t);
 
     // Lines 5-7: Y^ <- RESAMPLECANDIDATES(RAYCASTFROMPOINTS(X)); ESTIMATERADIOSITIES(Y^).
-    std::vector<Candidate> candidates = candidatesWithRadiance(points);
+    std::vector<Candidate> candidates = candidatesWithRadiance(points, snapshot.lights);
 
     // Line 8: ESTIMATEPROBABILITYDENSITIES(Y^), k = 1 against the current Y.
     t = Clock::now();

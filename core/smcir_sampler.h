@@ -26,7 +26,7 @@
 //   line 9     M_min = min(M_max, M_strong)     candidates stronger than 95 % of Y (eq. 9, 3.2.5)
 //   lines 10-12  INVALID += weakest VPLs until |INVALID| >= M_min
 //   lines 13-17  remove CLAMPSIZE(INVALID, M_max), refill those slots with the strongest candidates
-//   line 18    radiosities of Y                only where the cache is stale (invalidateRadiance)
+//   line 18    radiosities of Y                only where the cache is stale (the lights changed)
 //   line 19    densities of Y                  kNN with k of eq. (8), self excluded
 //
 // Details
@@ -71,9 +71,16 @@
 //  at most radiosityBounces times counting y, y's own emission excluded because emitters are drawn
 //  by the direct pass). Each candidate gets a seed from (seed, frame, index) that it keeps for its
 //  whole life as a VPL, so its paths, and hence its radiance, stay the same from frame to frame.
-//  The value is cached: surviving VPLs are not traced again until invalidateRadiance(), after
-//  which line 18 re-traces all of them with their own seeds. Until then lines 9-12 compare the
-//  candidates (new light) with the VPLs' cached (old) values, as the paper does.
+//  The value is cached, keyed by a hash of the lights it was computed for (the frame snapshot's):
+//  surviving VPLs are not traced again while the lights stay the same, and line 18 re-traces every
+//  VPL whose key differs, with its own seed, in the frame the lights change. Lines 9-12 of that
+//  frame compare the candidates (new light) with the VPLs' cached (old) values, as the paper does.
+//
+//  Untextured scene (section 5): "we use an untextured version of the scene for the VPL generation
+//  and use average material colors as albedos. The path traced reference images use the same
+//  approximation". By default VPL surfaces and the radiance paths see UntexturedMaterials (core/
+//  surface.h: mean albedo per material, no normal maps), and the clamped or indirect reference for
+//  SMCIR is rendered with reference.untexturedBounces. smcir.texturedVPLs = true is not in the paper.
 //
 //  Densities (3.2.4, eq. 7, lines 8 and 19): p(y) = k / (n pi r_k(y)^2), n the number of VPLs in
 //  the set (I when full). Candidates: k = 1 against the current Y (candidates are not in Y, so
@@ -109,8 +116,10 @@
 //  thread count. No std:: distributions (their output differs between standard libraries).
 //
 //  Threads: the stages run their loops with tbb::parallel_for. The object itself is not
-//  thread-safe: call step() and invalidateRadiance() from one thread, read vpls() between steps
-//  (copy it to hand it to another thread), and do not change the scene's lights during a step.
+//  thread-safe: call step() from one thread and read vpls() between steps (copy it to hand it to
+//  another thread). A step reads its FrameSnapshot (camera, lights: copies) and the scene's static
+//  parts only, never scene.lights, so the render thread may animate the lights meanwhile
+//  (core/smcir_worker.h; a ThreadSanitizer test checks it).
 //
 //  Radiance paths share vertex 0: ReflectedRadianceEstimator evaluates the punctual lights at y
 //  once per estimate, not once per path, and skips the final emission-only ray when the scene has
@@ -120,7 +129,7 @@
 //
 //  Costs per frame (defaults, I = 2048): |X| = 2304 primary rays, up to 2048 mail-box rays, up to
 //  2 * 2304 * 16 validation rays (only while VPLs are invalid), 32768 candidate rays, one kNN
-//  query per raw point, I radiance estimates of 16 paths (2I after invalidateRadiance), and two
+//  query per raw point, I radiance estimates of 16 paths (2I when the lights changed), and two
 //  kNN passes over I points. lastTimes() reports each stage and the Embree rays cast.
 //
 // References
@@ -140,6 +149,7 @@
 
 #include <glm/glm.hpp>
 
+#include "frame_snapshot.h"
 #include "ray_scene.h"
 #include "scene.h"
 #include "surface.h"
@@ -157,7 +167,7 @@ struct SMCIRParams {
     int validationIterations = 2;   // rounds of validation rays per frame (3.2.2) [0, 16]
     int candidateFactor = 16;       // candidateFactor * I candidate rays, resampled to I (3.2.1) [1, 256]
     int resampleRetries = 8;        // redraws for duplicates in the resampling (3.2.1) [0, 64]
-    int candidateDensityK = 8;      // k of the kNN density of the raw candidate points [1, 64]
+    int candidateDensityK = 1;      // k of the kNN density of the raw candidate points [1, 64] (3.2.4: 1)
     bool candidateDensityGrid = false; // approximate that density by point counts in a uniform grid of
                                        // about k points per cell (O(N), no kNN). Not in the paper.
     int radiositySamples = 16;      // path-tracer samples per VPL radiance (3.2.3) [1, 65536]
@@ -172,6 +182,13 @@ struct SMCIRParams {
     int cameraSamplesY = 36;        // RAYCASTFROMCAMERA grid rows [1, 4096]
     int warmupIterations = 100;     // frames run by initialize() before the first one is shown [0, 100000]
     std::uint32_t seed = 1;         // random stream seed: the same seed and cameras give the same VPLs
+    bool texturedVPLs = false;      // false: the paper's untextured scene for the VPLs (mean material
+                                    // albedos, no normal maps; section 5). true: textured (not in the paper)
+    float clampScale = 1.0f;        // VPL clamping, G_max = 1/d^2, d = clampScale * D / sqrt(I), D the scene
+                                    // diagonal [0, 1000]; 0 = none (computeClampGeometry). Not in the paper,
+                                    // which clamps "to a value suitable for 2048 VPLs" chosen per scene (5.4)
+    bool reestimateEveryFrame = false; // every frame is a new radiance-cache key: the moving-light cost
+                                       // (a measurement aid; key "smcir.invalidateEveryFrame")
 
     // Keys "smcir.<field>".
     void visitParams(ParamVisitor& visitor);
@@ -179,6 +196,12 @@ struct SMCIRParams {
 
 // Eq. (8) as papers/README.md reads it: k = max(1, floor(sqrt(I / 32))). 4 at 512, 8 at 2048.
 int computeRenderingK(int vplCount);
+
+// G_max [1/m^2] of VPL clamping for a scene of diagonal D [m] (0 = no clamping): d = clampScale D /
+// sqrt(I), G_max = 1/d^2. d follows the expected spacing of I VPLs on the scene's surfaces, so the
+// clamp relaxes as I grows (3.3: "increasing the number of VPLs (while decreasing their clamping)
+// tends to the correct solution"). The clamped reference uses the same value.
+float computeClampGeometry(const SMCIRParams& params, float sceneDiagonal);
 
 // What one step() did. Times are wall-clock [ms] (std::chrono::steady_clock) of the stage.
 struct SMCIRStageTimes {
@@ -210,18 +233,20 @@ public:
     SMCIRSampler(const SMCIRSampler&) = delete;
     SMCIRSampler& operator=(const SMCIRSampler&) = delete;
 
-    // Alg. 1 line 1 and the warm-up frames. `aspect` is the view's width / height (for the camera
-    // rays and the frustum test). progress(done, total) is called after each warm-up frame.
-    // Afterwards vpls().changed lists every slot, and lastTimes() describes the last warm-up frame
-    // (the initialization itself when there is none) with `moved` = all slots.
-    // May be called again to start over (same seed and camera: the same set).
+    // Alg. 1 line 1 and the warm-up frames, for the snapshot's camera, aspect (the view's width /
+    // height, for the camera rays and the frustum test) and lights. progress(done, total) is called
+    // after each warm-up frame. Afterwards vpls().changed lists every slot, and lastTimes() describes
+    // the last warm-up frame (the initialization itself when there is none) with `moved` = all slots.
+    // May be called again to start over (same seed and snapshot: the same set).
+    void initialize(const FrameSnapshot& snapshot, const std::function<void(int done, int total)>& progress = {});
+    // One frame, Alg. 1 lines 3-19: at most maxMoves slots change. Requires initialize(). Reads only
+    // the snapshot and the scene's static parts. A VPL's cached radiance (3.2.3) is re-estimated,
+    // with its own seed, exactly when the snapshot's lights differ from those it was computed for.
+    void step(const FrameSnapshot& snapshot);
+    // Conveniences for single-threaded callers: a snapshot of the scene's lights, taken now.
     void initialize(const Camera& camera, float aspect = 16.0f / 9.0f,
                     const std::function<void(int done, int total)>& progress = {});
-    // One frame, Alg. 1 lines 3-19: at most maxMoves slots change. Requires initialize().
     void step(const Camera& camera, float aspect = 16.0f / 9.0f);
-    // The scene's lights changed: the next step re-estimates the radiance of every VPL (line 18)
-    // with its own seed. Without it, surviving VPLs keep their cached radiance.
-    void invalidateRadiance();
 
     const VPLSet& vpls() const { return mSet; }
     const SMCIRStageTimes& lastTimes() const { return mTimes; }
@@ -234,10 +259,12 @@ private:
     struct SlotState;
     struct Candidate;
 
-    void beginFrame();
+    void beginFrame(const FrameSnapshot& snapshot);
+    const UntexturedMaterials* vplMaterials() const; // the materials VPLs see (null: textured)
     void castCameraRays(const Camera& camera, float aspect, std::vector<CameraPoint>& points);
     std::vector<CameraPoint> timedCameraPoints(const Camera& camera, float aspect); // line 3, timed
-    std::vector<Candidate> candidatesWithRadiance(const std::vector<CameraPoint>& points); // lines 5-7, timed
+    std::vector<Candidate> candidatesWithRadiance(const std::vector<CameraPoint>& points,
+                                                  const std::vector<Light>& lights); // lines 5-7, timed
     std::vector<char> resolveIndirectVisibility(const Camera& camera, float aspect,
                                                 const std::vector<CameraPoint>& points);
     std::vector<Candidate> sampleCandidates(const std::vector<CameraPoint>& points, double& samplingMs,
@@ -260,12 +287,12 @@ private:
     std::vector<char> mDensityValid;
     std::size_t mDensityK = ~std::size_t{0}; // k of that estimate (a different k recomputes everything)
     float mOffset = 1e-4f;                        // ray offset along geometric normals [m]
-    std::unique_ptr<ReflectedRadianceEstimator> mEstimator; // rebuilt each frame (lights may move)
+    std::unique_ptr<ReflectedRadianceEstimator> mEstimator; // rebuilt each frame from the snapshot's lights
+    UntexturedMaterials mUntextured;              // section 5: mean albedos (unless texturedVPLs)
     VPLSet mSet;
     std::vector<SlotState> mSlots;                // per slot, beside mSet.slots
     std::uint64_t mFrame = 0;
-    std::uint64_t mRadianceEpoch = 0;             // bumped by invalidateRadiance()
-    static constexpr std::uint64_t kStaleEpoch = ~std::uint64_t{0}; // never current: forces re-estimation
+    std::uint64_t mRadianceKey = 0;               // this frame's radiance-cache key (hash of the lights)
     int candidateSamples() const;                 // samples of line 7
     bool mInitialized = false;
     SMCIRStageTimes mTimes;

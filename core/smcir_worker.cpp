@@ -1,5 +1,7 @@
 #include "smcir_worker.h"
 
+#include <utility>
+
 #include "smcir_sampler.h"
 
 namespace vplgi {
@@ -16,14 +18,12 @@ SMCIRWorker::~SMCIRWorker()
     mThread.join();
 }
 
-void SMCIRWorker::submit(const Camera& camera, float aspect, bool lightsChanged)
+void SMCIRWorker::submit(FrameSnapshot snapshot)
 {
     wait();
     {
         std::lock_guard<std::mutex> lock(mMutex);
-        mJob = camera;
-        mAspect = aspect;
-        mInvalidate = lightsChanged;
+        mJob = std::move(snapshot);
         mBusy = true;
     }
     mCondition.notify_all();
@@ -43,21 +43,16 @@ void SMCIRWorker::wait()
 void SMCIRWorker::run()
 {
     for (;;) {
-        Camera camera;
-        float aspect = 1.0f;
-        bool invalidate = false;
+        std::optional<FrameSnapshot> job;
         {
             std::unique_lock<std::mutex> lock(mMutex);
             mCondition.wait(lock, [this] { return mStop || mJob.has_value(); });
             if (mStop) return;
-            camera = *mJob;
-            invalidate = mInvalidate;
-            aspect = mAspect;
+            job = std::move(mJob);
             mJob.reset();
         }
         try {
-            if (invalidate) mSampler.invalidateRadiance();
-            mSampler.step(camera, aspect);
+            mSampler.step(*job);
         } catch (...) {
             std::lock_guard<std::mutex> lock(mMutex);
             mError = std::current_exception();

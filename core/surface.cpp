@@ -39,7 +39,37 @@ glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb)
     return glm::mix(a, b, fy);
 }
 
-SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towardsViewer)
+UntexturedMaterials computeUntexturedMaterials(const Scene& scene)
+{
+    UntexturedMaterials table;
+    // Mean of a texture's texels (no filtering needed: the mean of a bilinear repeat-wrapped
+    // reconstruction is the mean of its texels).
+    auto mean = [&](const TextureRef& ref, bool srgb) {
+        const Image& image = scene.images[static_cast<std::size_t>(ref.image)];
+        glm::dvec4 sum(0.0);
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) sum += glm::dvec4(texel(image, x, y, srgb));
+        const double count = std::max(1.0, static_cast<double>(image.width) * image.height);
+        return glm::vec4(sum / count);
+    };
+    for (const Material& m : scene.materials) {
+        glm::vec3 base(m.baseColor);
+        if (m.baseColorTexture.valid()) base *= glm::vec3(mean(m.baseColorTexture, true));
+        float metallic = m.metallic, roughness = m.roughness;
+        if (m.metallicRoughnessTexture.valid()) {
+            const glm::vec4 mr = mean(m.metallicRoughnessTexture, false);
+            roughness *= mr.g;
+            metallic *= mr.b;
+        }
+        table.baseColor.push_back(base);
+        table.metallic.push_back(metallic);
+        table.roughness.push_back(roughness);
+    }
+    return table;
+}
+
+SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towardsViewer,
+                       const UntexturedMaterials* untextured)
 {
     const Instance& instance = scene.instances[hit.instance];
     const Mesh& mesh = scene.meshes[instance.mesh];
@@ -59,7 +89,7 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
     s.geometricNormal = glm::normalize(hit.geometricNormal);
     glm::vec3 n = glm::normalize(normalFromObject * (w0 * v0.normal + w1 * v1.normal + w2 * v2.normal));
 
-    if (m.normalTexture.valid() && mesh.hasTangents) {
+    if (m.normalTexture.valid() && mesh.hasTangents && !untextured) {
         glm::vec4 t4 = w0 * v0.tangent + w1 * v1.tangent + w2 * v2.tangent;
         glm::vec3 t = glm::normalize(glm::mat3(instance.worldFromObject) * glm::vec3(t4));
         t = glm::normalize(t - n * glm::dot(n, t));
@@ -78,17 +108,24 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
     if (glm::dot(s.geometricNormal, n) < 0.0f) s.geometricNormal = -s.geometricNormal;
     s.normal = n;
 
-    glm::vec4 base = m.baseColor;
-    if (m.baseColorTexture.valid()) base *= sampleImage(scene.images[m.baseColorTexture.image], s.texcoord, true);
-    float metallic = m.metallic, roughness = m.roughness;
-    if (m.metallicRoughnessTexture.valid()) {
-        glm::vec4 mr = sampleImage(scene.images[m.metallicRoughnessTexture.image], s.texcoord, false);
-        roughness *= mr.g;
-        metallic *= mr.b;
+    if (untextured) {
+        const auto index = static_cast<std::size_t>(mesh.material);
+        s.material.baseColor = untextured->baseColor[index];
+        s.material.metallic = untextured->metallic[index];
+        s.material.roughness = untextured->roughness[index];
+    } else {
+        glm::vec4 base = m.baseColor;
+        if (m.baseColorTexture.valid()) base *= sampleImage(scene.images[m.baseColorTexture.image], s.texcoord, true);
+        float metallic = m.metallic, roughness = m.roughness;
+        if (m.metallicRoughnessTexture.valid()) {
+            glm::vec4 mr = sampleImage(scene.images[m.metallicRoughnessTexture.image], s.texcoord, false);
+            roughness *= mr.g;
+            metallic *= mr.b;
+        }
+        s.material.baseColor = glm::vec3(base);
+        s.material.metallic = metallic;
+        s.material.roughness = roughness;
     }
-    s.material.baseColor = glm::vec3(base);
-    s.material.metallic = metallic;
-    s.material.roughness = roughness;
     s.material.specular = m.specular;
     s.emission = m.emission;
     if (m.emissionTexture.valid())

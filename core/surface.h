@@ -3,6 +3,8 @@
 // with Embree visibility. Used by image tests, the path tracer and VPL samplers.
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "../glsl/shared/brdf.h"
@@ -21,8 +23,23 @@ struct SurfacePoint {
     int materialIndex = -1;
 };
 
-// Surface data at a hit; `towardsViewer` decides the side of double-sided materials.
-SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towardsViewer);
+// The "untextured version of the scene" SMCIR generates its VPLs on (section 5: "we use an
+// untextured version of the scene for the VPL generation and use average material colors as
+// albedos. The path traced reference images use the same approximation"). Per material: the base
+// colour factor times the mean of its base-colour texture (sRGB-decoded, as GL filters it), and the
+// metallic and roughness factors times the means of their texture channels. Normal maps are off.
+struct UntexturedMaterials {
+    std::vector<glm::vec3> baseColor; // per material, linear RGB
+    std::vector<float> metallic;
+    std::vector<float> roughness;
+};
+UntexturedMaterials computeUntexturedMaterials(const Scene& scene);
+
+// Surface data at a hit; `towardsViewer` decides the side of double-sided materials. With
+// `untextured`, the material is that table's (mean albedo, no normal map); emission stays textured
+// (emitters are lights, and the direct pass and the path tracer sample them as they are).
+SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towardsViewer,
+                       const UntexturedMaterials* untextured = nullptr);
 
 // Bilinear, repeat-wrapped texture lookup; sRGB-decoded when `srgb`. Returns RGBA in [0,1].
 glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb);

@@ -2,10 +2,15 @@
 //
 // A VPL y is a diffuse (cosine) emitter: it carries the exitant radiance L(y) of the surface it
 // sits on and the density p(y) [1/m^2] of VPL positions there; its intensity is I(y) = L(y) / p(y)
-// [W/sr] (eq. 6). With I VPLs the indirect radiance at a shaded point x is (eq. 5, one primary hit
-// per pixel):
-//     L_ind(x -> eye) = (1/I) sum_i f(x, w_o, w_i) * G(x <-> y_i) * V(x, y_i) * I(y_i),
+// [W/sr] (eq. 6). With n valid VPLs the indirect radiance at a shaded point x is (eq. 5, one primary
+// hit per pixel):
+//     L_ind(x -> eye) = (1/n) sum_i f(x, w_o, w_i) * G(x <-> y_i) * V(x, y_i) * I(y_i),
 //     G = cos+(n_x . w_i) cos+(n_y . -w_i) / |x - y_i|^2     (clamped to G_max by the renderer)
+//
+// One convention everywhere (CPU gather, GPU shading): n is the number of *valid* slots, and the
+// densities are normalised by the same n (eq. 7 with n for I), so p integrates to 1 over the set and
+// a set that is short of its budget (after initialisation, in open scenes, after cleared slots) is
+// neither too dark nor too bright. The paper writes I for both; they agree when the set is full.
 #pragma once
 
 #include <cstdint>
@@ -31,7 +36,7 @@ struct VPLSet {
     std::vector<VPL> slots;              // size = VPL budget I
     std::vector<std::uint32_t> changed;  // slots whose position or normal changed (moved, created)
     std::uint64_t generation = 0;        // increases with every published set
-    // Number of valid slots (the I of the estimator when the set is full).
+    // Number of valid slots: the n of the estimator and of the densities.
     std::size_t validCount() const
     {
         std::size_t n = 0;

@@ -10,7 +10,9 @@ namespace vplgi {
 glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
                      const VPLGatherParams& params)
 {
-    if (vpls.slots.empty()) return glm::vec3(0.0f);
+    // 1/n with n the number of valid VPLs, the same n the densities are normalised by (core/vpl.h).
+    const std::size_t n = vpls.validCount();
+    if (n == 0) return glm::vec3(0.0f);
     const float offset = 1e-4f * rays.sceneScale();
     const glm::vec3 origin = point.position + point.geometricNormal * offset;
     glm::vec3 sum(0.0f);
@@ -29,7 +31,7 @@ glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoin
         if (!rays.visible(origin, vpl.position + vpl.normal * offset)) continue;
         sum += shared::evaluateBRDF(point.material, point.normal, wo, wi) * geometry * vpl.intensity();
     }
-    return sum / static_cast<float>(vpls.slots.size());
+    return sum / static_cast<float>(n);
 }
 
 ImageRGBA32F renderVPLGather(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,

@@ -3,9 +3,10 @@
 // VPL distribution is measured apart from shadow-map artefacts. Technique `smcir-rt` and the tests
 // use it.
 //
-//   L_ind(x -> eye) = (1/I) sum_i f(x, w_o, w_i) min(G(x <-> y_i), G_max) V(x, y_i) I(y_i)   (SMCIR eq. 5/6)
+//   L_ind(x -> eye) = (1/n) sum_i f(x, w_o, w_i) min(G(x <-> y_i), G_max) V(x, y_i) I(y_i)   (SMCIR eq. 5/6)
 //
-// with I the VPL budget (the slot count), f the shared BRDF (glsl/shared/brdf.h) and I(y) = L(y)/p(y).
+// with n the number of valid VPLs (core/vpl.h: the densities are normalised by the same n), f the
+// shared BRDF (glsl/shared/brdf.h) and I(y) = L(y)/p(y).
 #pragma once
 
 #include <glm/glm.hpp>

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <utility>
 
 #include "core/params.h"
 
@@ -18,10 +19,6 @@ SMCIRRayTracedTechnique::~SMCIRRayTracedTechnique()
 void SMCIRRayTracedTechnique::visitParams(ParamVisitor& v)
 {
     mParams.visitParams(v);
-    v.field("smcir.clampDistance", mClampDistance, 0.0f, 1.0f,
-            "VPL clamping: G is capped at 1/d^2 with d this fraction of the scene diagonal (0 = no clamping)");
-    v.field("smcir.invalidateEveryFrame", mInvalidateEveryFrame,
-            "re-estimate every VPL's radiance each frame, as when a light moves (to measure that cost)");
     v.field("smcir.synchronous", mSynchronous,
             "run the sampler step on the render thread (no overlap with the GPU frame; for clean timings)");
 }
@@ -38,6 +35,8 @@ void SMCIRRayTracedTechnique::setScene(const SceneContext& context)
 void SMCIRRayTracedTechnique::update(const FrameContext& frame)
 {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
+    // Everything the sampler reads that this thread writes (camera, lights), by value.
+    FrameSnapshot snapshot = FrameSnapshot::of(*mScene, frame.camera, aspect, frame.time);
     if (!mInitialized) {
         // Alg. 1 line 1 and the warm-up iterations; a progress bar on large scenes, where they take seconds.
         std::function<void(int, int)> progress;
@@ -48,28 +47,24 @@ void SMCIRRayTracedTechnique::update(const FrameContext& frame)
                              width - filled, "", done, total);
                 if (done == total) std::fprintf(stderr, "\n");
             };
-        mSampler->initialize(frame.camera, aspect, progress);
+        mSampler->initialize(snapshot, progress);
         mWorker = std::make_unique<SMCIRWorker>(*mSampler);
         mInitialized = true;
     } else if (mSynchronous) {
-        if (frame.lightsChanged || mInvalidateEveryFrame) mSampler->invalidateRadiance();
-        mSampler->step(frame.camera, aspect);
+        mSampler->step(snapshot);
     } else {
         mWorker->wait();
     }
     mRendered = mSampler->vpls();
     mTimes = mSampler->lastTimes();
-    if (!mSynchronous) mWorker->submit(frame.camera, aspect, frame.lightsChanged || mInvalidateEveryFrame);
+    if (!mSynchronous) mWorker->submit(std::move(snapshot));
 }
 
 void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, const IndirectTarget& target)
 {
     const auto start = std::chrono::steady_clock::now();
     VPLGatherParams gather;
-    if (mClampDistance > 0.0f) {
-        const float d = mClampDistance * mRays->sceneScale();
-        gather.clampGeometry = 1.0f / (d * d);
-    }
+    gather.clampGeometry = computeClampGeometry(mParams, mRays->sceneScale());
     const ImageRGBA32F image = renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, mRendered, gather);
     // GL rows run bottom to top.
     const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
@@ -78,6 +73,15 @@ void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, 
         std::copy_n(&image.pixels[static_cast<std::size_t>(frame.height - 1 - y) * row], row, &flipped[y * row]);
     glTextureSubImage2D(target.radiance.id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
     mGatherMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void SMCIRRayTracedTechnique::configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const
+{
+    // Section 5: "The path traced reference images use the same approximation" (untextured VPLs).
+    if (!explicitKeys.count("reference.untexturedBounces")) params.untexturedBounces = !mParams.texturedVPLs;
+    // 5.4: the clamped reference clamps as the VPLs are clamped.
+    const float clamp = computeClampGeometry(mParams, mRays->sceneScale());
+    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
 }
 
 std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats() const

@@ -4,11 +4,12 @@
 // interleaving and filtering artefacts; the GPU technique `smcir` builds on the same sampler.
 //
 // Overview, per frame n:
-//   update():  wait for the worker's step n-1 -> copy its VPL set -> submit step n (camera n; with
-//              "lights changed" the worker re-estimates all radiances) -> worker runs meanwhile
+//   update():  wait for the worker's step n-1 -> copy its VPL set -> submit step n with a snapshot
+//              of frame n (camera, lights by value) -> worker runs meanwhile
 //   render():  gather the copied set at every pixel on the CPU, upload to the indirect target
-// So frame n shows the VPLs sampled for camera n-1 (one frame of latency, as in the paper's
-// pipelined implementation), and the result is deterministic for a seed. With
+// So frame n shows the VPLs sampled for frame n-1 (one frame of latency; this pipelining is ours,
+// not the paper's, which runs every step on the GPU within the frame), and the result is
+// deterministic for a seed. With
 // smcir.synchronous the step runs on the render thread instead (frame n shows step n): slower, but
 // the stage times are then measured without the GPU frame competing for the same cores.
 //
@@ -36,11 +37,10 @@ public:
     void render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target) override;
     void visitParams(ParamVisitor& visitor) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
+    void configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const override;
 
 private:
     SMCIRParams mParams;
-    float mClampDistance = 0.0f; // d_min as a fraction of the scene diagonal; G_max = 1/d_min^2 (0 = none)
-    bool mInvalidateEveryFrame = false; // re-estimate all radiances every frame (the moving-light cost)
     bool mSynchronous = false;  // step on the render thread (no overlap): uncontended stage timings
     const Scene* mScene = nullptr;
     std::unique_ptr<RayScene> mRays;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "../gpu_scene.h"
 #include "../passes/gbuffer_pass.h"
 #include "core/direct_lights.h"
+#include "core/path_tracer.h"
 #include "core/scene.h"
 
 namespace vplgi {
@@ -54,6 +56,10 @@ public:
     virtual void reloadShaders(const gl::ShaderLoader&) {}
     // Statistics of the last frame for `vplgi bench` (e.g. "rays", "vpls", "vplsMoved").
     virtual std::vector<std::pair<std::string, double>> frameStats() const { return {}; }
+    // What a path-traced reference must simulate to be compared with this technique (`vplgi
+    // compare`), e.g. SMCIR's untextured bounces (section 5) and its clamp (5.4). Called after
+    // setScene(); `explicitKeys` are the reference.* keys the user set, which win.
+    virtual void configureReference(PathTracerParams& /*params*/, const std::set<std::string>& /*explicitKeys*/) const {}
 };
 
 // The explicit list of techniques; an unknown name throws Error listing the known ones.

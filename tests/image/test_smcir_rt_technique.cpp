@@ -21,7 +21,7 @@ TEST_CASE("smcir-rt adds the CPU gather of the sampler's first VPL set", "[image
     Scene scene = makeBuiltinScene("cornell");
     const Camera& camera = scene.cameras[0];
     const int width = 40, height = 30;
-    const Settings settings = {{"smcir.vplCount", "256"}, {"smcir.warmupIterations", "3"}, {"smcir.clampDistance", "0.05"}};
+    const Settings settings = {{"smcir.vplCount", "256"}, {"smcir.warmupIterations", "3"}, {"smcir.clampScale", "2"}};
 
     std::unique_ptr<Technique> technique = createTechnique("smcir-rt");
     ParamSetter setter(settings);
@@ -40,7 +40,7 @@ TEST_CASE("smcir-rt adds the CPU gather of the sampler's first VPL set", "[image
     SMCIRSampler sampler(scene, rays, params);
     sampler.initialize(camera, static_cast<float>(width) / height);
     VPLGatherParams gather;
-    const float d = 0.05f * rays.sceneScale();
+    const float d = 2.0f * rays.sceneScale() / std::sqrt(256.0f); // clampScale D / sqrt(I), written out
     gather.clampGeometry = 1.0f / (d * d);
     const ImageRGBA32F indirect = renderVPLGather(scene, rays, camera, width, height, sampler.vpls(), gather);
 
