@@ -163,29 +163,29 @@ int runBench(const std::vector<std::string>& args)
         std::printf("| **total** | %s | %s | %s |\n\n", formatNumber(a.total.median()).c_str(),
                     formatNumber(b.total.median()).c_str(), formatNumber(b.total.median() / a.total.median(), 3).c_str());
     }
-    // Ray efficiency of CPU stages that report their rays: the time those rays take at the Embree
-    // throughput measured now, in this run, over the stage's wall time (SMCIR's goal: >= 0.75).
+    // Ray efficiency of CPU stages that report their rays: the very rays the stage cast in a frame,
+    // replayed alone on the same threads, over the stage's wall time (SMCIR's goal: >= 0.75).
     std::string efficiencyJson;
     for (const BenchResult& r : results) {
         auto rays = r.stats.find("sampler: rays");
         auto total = r.stats.find("sampler: total ms");
-        if (rays == r.stats.end() || total == r.stats.end()) continue;
-        const RayScene rayScene(sessions.front()->scene());
-        const RayThroughput throughput = measureRayThroughput(rayScene, 200000);
-        const double raysPerFrame = rays->second.median(), wallSeconds = total->second.median() * 1e-3;
-        const double atIntersect = raysPerFrame / throughput.intersectPerSecond / wallSeconds;
-        const double atOccluded = raysPerFrame / throughput.occludedPerSecond / wallSeconds;
-        std::printf("%s: Embree throughput in this run %.2f Mrays/s (intersect), %.2f Mrays/s (occluded); sampler "
-                    "%.0f rays per frame in %.1f ms (%.2f Mrays/s): ray efficiency %.2f (intersect rate) to %.2f (occluded "
-                    "rate)\n\n",
-                    r.technique.c_str(), throughput.intersectPerSecond * 1e-6, throughput.occludedPerSecond * 1e-6,
-                    raysPerFrame, total->second.median(), raysPerFrame / wallSeconds * 1e-6, atIntersect, atOccluded);
-        efficiencyJson = ", \"rayEfficiency\": {\"intersectMraysPerSecond\": " +
-                         std::to_string(throughput.intersectPerSecond * 1e-6) +
-                         ", \"occludedMraysPerSecond\": " + std::to_string(throughput.occludedPerSecond * 1e-6) +
-                         ", \"atIntersectRate\": " + std::to_string(atIntersect) +
-                         ", \"atOccludedRate\": " + std::to_string(atOccluded) + "}";
+        auto replay = r.stats.find("sampler: ray replay ms");
+        if (rays == r.stats.end() || total == r.stats.end() || replay == r.stats.end()) continue;
+        if (!(replay->second.median() > 0.0)) {
+            std::printf("%s: ray efficiency not measured (needs --set smcir.synchronous=true: the replay needs "
+                        "the step alone on the render thread)\n\n", r.technique.c_str());
+            continue;
+        }
+        const double efficiency = replay->second.median() / total->second.median();
+        std::printf("%s: sampler %.0f rays per frame in %.1f ms; the same rays replayed alone: %.1f ms; ray efficiency "
+                    "(replay / sampler) %.2f\n\n",
+                    r.technique.c_str(), rays->second.median(), total->second.median(), replay->second.median(),
+                    efficiency);
+        efficiencyJson += std::string(efficiencyJson.empty() ? "" : ", ") + "{\"technique\": \"" + r.technique +
+                          "\", \"samplerMs\": " + std::to_string(total->second.median()) + ", \"replayMs\": " +
+                          std::to_string(replay->second.median()) + ", \"efficiency\": " + std::to_string(efficiency) + "}";
     }
+    if (!efficiencyJson.empty()) efficiencyJson = ", \"rayEfficiency\": [" + efficiencyJson + "]";
     std::string json = "{\"scene\": \"" + sessions.front()->scene().source + "\", \"width\": " + std::to_string(width) +
                        ", \"height\": " + std::to_string(height) + ", \"frames\": " + std::to_string(frames) +
                        ", \"results\": [";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <embree3/rtcore.h>
@@ -92,6 +93,7 @@ void fillRay(RTCRay& r, const Ray& ray)
 
 Hit RayScene::intersect(const Ray& ray) const
 {
+    if (RayRecorder* recorder = mRecorder.load(std::memory_order_relaxed)) recorder->add(ray, true);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rayHit;
@@ -111,6 +113,7 @@ Hit RayScene::intersect(const Ray& ray) const
 
 bool RayScene::occluded(const Ray& ray) const
 {
+    if (RayRecorder* recorder = mRecorder.load(std::memory_order_relaxed)) recorder->add(ray, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r;
@@ -129,36 +132,48 @@ bool RayScene::visible(const glm::vec3& a, const glm::vec3& b) const
     return !occluded(ray);
 }
 
-RayThroughput measureRayThroughput(const RayScene& rays, int count, std::uint32_t seed)
+struct RayRecorder::Impl {
+    struct Recorded {
+        Ray ray;
+        bool closestHit = false;
+    };
+    tbb::enumerable_thread_specific<std::vector<Recorded>> perThread;
+};
+
+RayRecorder::RayRecorder() : mImpl(std::make_unique<Impl>()) {}
+RayRecorder::~RayRecorder() = default;
+
+void RayRecorder::add(const Ray& ray, bool closestHit)
 {
-    const AABB bounds = rays.scene().worldBounds();
-    std::vector<Ray> batch(static_cast<std::size_t>(count));
-    std::uint32_t state = seed * 747796405u + 2891336453u;
-    auto next = [&state] { // xorshift: the batch only needs to be spread, not high quality
-        state ^= state << 13u;
-        state ^= state >> 17u;
-        state ^= state << 5u;
-        return static_cast<float>(state) * 2.3283064365386963e-10f;
-    };
-    for (Ray& r : batch) {
-        r.origin = bounds.lower + glm::vec3(next(), next(), next()) * bounds.extent();
-        const float z = 2.0f * next() - 1.0f, phi = 6.2831853f * next(), s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        r.direction = glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
-    }
-    RayThroughput result;
-    auto time = [&](auto&& cast) {
-        const auto start = std::chrono::steady_clock::now();
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 256), [&](const auto& range) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) cast(batch[i]);
-        });
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    };
-    std::atomic<int> sink{0};
-    const double intersectSeconds = time([&](const Ray& r) { sink += rays.intersect(r).valid() ? 1 : 0; });
-    const double occludedSeconds = time([&](const Ray& r) { sink += rays.occluded(r) ? 1 : 0; });
-    result.intersectPerSecond = count / std::max(intersectSeconds, 1e-9);
-    result.occludedPerSecond = count / std::max(occludedSeconds, 1e-9);
-    return result;
+    mImpl->perThread.local().push_back({ray, closestHit});
+}
+
+std::size_t RayRecorder::size() const
+{
+    std::size_t n = 0;
+    for (const auto& v : mImpl->perThread) n += v.size();
+    return n;
+}
+
+void RayRecorder::clear()
+{
+    for (auto& v : mImpl->perThread) v.clear();
+}
+
+double RayRecorder::replay(const RayScene& rays) const
+{
+    std::vector<Impl::Recorded> all;
+    all.reserve(size());
+    for (const auto& v : mImpl->perThread) all.insert(all.end(), v.begin(), v.end());
+    std::atomic<std::uint64_t> sink{0}; // keeps the results alive
+    const auto start = std::chrono::steady_clock::now();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::uint64_t hits = 0;
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+            hits += all[i].closestHit ? (rays.intersect(all[i].ray).valid() ? 1 : 0) : (rays.occluded(all[i].ray) ? 1 : 0);
+        sink.fetch_add(hits, std::memory_order_relaxed);
+    });
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 } // namespace vplgi

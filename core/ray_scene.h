@@ -3,6 +3,7 @@
 // triangle index within the mesh. Thread-safe queries (Embree's rtcIntersect1/rtcOccluded1).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -29,15 +30,30 @@ struct Hit {
     bool valid() const { return instance >= 0; }
 };
 
-struct RayThroughput {
-    double intersectPerSecond = 0.0; // closest-hit rays per second (rtcIntersect1)
-    double occludedPerSecond = 0.0;  // any-hit rays per second (rtcOccluded1)
-};
-
 class RayScene;
-// Casts `count` random rays of each kind (origins uniform in the scene bounds, directions uniform)
-// on all TBB threads and measures the rate: the yardstick for "ray efficiency" of CPU stages.
-RayThroughput measureRayThroughput(const RayScene& rays, int count, std::uint32_t seed = 1);
+
+// The yardstick of "ray efficiency" (SMCIR Table 2's goal: at most a third of a CPU stage's time
+// goes to anything but rays): while a RayScene records into it, every ray cast (closest hit or
+// occlusion, with its origin, direction and interval) is kept in a per-thread buffer; replay() then
+// traces exactly those rays again on the same TBB threads with no other work. Replay time over the
+// stage's wall time is the efficiency. Recording costs one vector append per ray.
+class RayRecorder {
+public:
+    RayRecorder();
+    ~RayRecorder();
+    RayRecorder(const RayRecorder&) = delete;
+    RayRecorder& operator=(const RayRecorder&) = delete;
+
+    void add(const Ray& ray, bool closestHit); // thread-safe
+    std::size_t size() const;                  // rays recorded (call when no ray is being cast)
+    void clear();
+    // Casts every recorded ray again, in parallel; returns the wall time [s].
+    double replay(const RayScene& rays) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
 
 class RayScene {
 public:
@@ -51,6 +67,10 @@ public:
     // True when nothing blocks the open segment between a and b (ends excluded by relative epsilon).
     bool visible(const glm::vec3& a, const glm::vec3& b) const;
 
+    // While set, every ray cast is also recorded (measurements only: set it when no other thread
+    // casts rays that should not be counted; nullptr stops).
+    void setRecorder(RayRecorder* recorder) { mRecorder.store(recorder, std::memory_order_relaxed); }
+
     const Scene& scene() const { return mScene; }
     // Diagonal of the world bounds [m]: the scale for ray offsets (computed once).
     float sceneScale() const { return mSceneScale; }
@@ -60,6 +80,7 @@ private:
     const Scene& mScene;
     float mSceneScale = 1.0f;
     std::unique_ptr<Impl> mImpl;
+    std::atomic<RayRecorder*> mRecorder{nullptr};
 };
 
 } // namespace vplgi

@@ -51,7 +51,13 @@ void SMCIRRayTracedTechnique::update(const FrameContext& frame)
         mWorker = std::make_unique<SMCIRWorker>(*mSampler);
         mInitialized = true;
     } else if (mSynchronous) {
+        // Synchronous steps also measure the ray efficiency: the step's rays are recorded and
+        // replayed alone (the render thread casts nothing meanwhile, so only the sampler's are kept).
+        mRecorder.clear();
+        mRays->setRecorder(&mRecorder);
         mSampler->step(snapshot);
+        mRays->setRecorder(nullptr);
+        mReplayMilliseconds = mRecorder.replay(*mRays) * 1e3;
     } else {
         mWorker->wait();
     }
@@ -97,6 +103,7 @@ std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats(
             {"sampler: selection ms", mTimes.selection},
             {"sampler: total ms", mTimes.total},
             {"sampler: rays", static_cast<double>(mTimes.rays)},
+            {"sampler: ray replay ms", mReplayMilliseconds},
             {"sampler: radiance estimates", static_cast<double>(mTimes.radianceEstimates)},
             {"vpls", static_cast<double>(mRendered.validCount())},
             {"vpls changed", static_cast<double>(mRendered.changed.size())},

@@ -11,7 +11,8 @@
 // not the paper's, which runs every step on the GPU within the frame), and the result is
 // deterministic for a seed. With
 // smcir.synchronous the step runs on the render thread instead (frame n shows step n): slower, but
-// the stage times are then measured without the GPU frame competing for the same cores.
+// the stage times are then measured without the GPU frame competing for the same cores, and the
+// step's rays are recorded and replayed alone for the ray efficiency (core/ray_scene.h RayRecorder).
 //
 // References: Hedman, Karras, Lehtinen, "Sequential Monte Carlo Instant Radiosity", TVCG 2017,
 // sections 3 and 4, Fig. 8.
@@ -49,6 +50,8 @@ private:
     VPLSet mRendered; // the set this frame renders (a copy: the worker changes the sampler's)
     SMCIRStageTimes mTimes{};
     double mGatherMilliseconds = 0.0;
+    RayRecorder mRecorder;            // smcir.synchronous: the step's rays, replayed alone
+    double mReplayMilliseconds = 0.0; // their replay time (0 when not measured)
     bool mInitialized = false;
 };
 

@@ -3,7 +3,10 @@
 // build runs these (scripts/test --tsan).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <vector>
+
+#include <tbb/global_control.h>
 
 #include "core/builtin_scenes.h"
 #include "core/ray_scene.h"
@@ -14,6 +17,12 @@
 using namespace vplgi;
 
 namespace {
+
+#if VPLGI_TSAN
+// ThreadSanitizer build: no TBB worker threads (tests/sanitizers/tsan.supp says why); parallel loops
+// run on the thread that calls them, so the render thread and the SMCIR worker are the two threads.
+const tbb::global_control kOneTBBThreadPerCaller(tbb::global_control::max_allowed_parallelism, 1);
+#endif
 
 // The Cornell box plus a point light that circles under the ceiling, one step per frame.
 Scene cornellWithMovingLight()

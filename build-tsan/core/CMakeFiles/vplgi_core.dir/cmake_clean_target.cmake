@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "libvplgi_core.a"
+)

@@ -1,0 +1,2 @@
+# Empty dependencies file for vplgi_tests_cpu.
+# This may be replaced when dependencies are built.
