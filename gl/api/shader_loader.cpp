@@ -27,6 +27,13 @@ std::string lineDirective(int fileIndex, int line)
 
 } // namespace
 
+std::string sourceLocation(const PreprocessedSource& source, long reportedLine)
+{
+    std::size_t fileIndex = static_cast<std::size_t>(reportedLine / kLineStride);
+    std::string file = fileIndex < source.files.size() ? source.files[fileIndex] : source.files.at(0);
+    return "glsl/" + file + ":" + std::to_string(reportedLine % kLineStride);
+}
+
 ShaderLoader::ShaderLoader(std::string glslDirectory) : mDirectory(std::move(glslDirectory))
 {
     require(fs::is_directory(mDirectory), "shader directory " + mDirectory + " not found (set VPLGI_GLSL_DIR)");
@@ -124,7 +131,7 @@ namespace {
 
 // Maps the driver's "<string>:<line>(<col>): message" (Mesa) or "<string>(<line>) : message"
 // (NVIDIA) to "glsl/<file>:<line>: message".
-std::string mapLog(const std::string& log, const std::vector<std::string>& files, const std::string& fallbackFile)
+std::string mapLog(const std::string& log, const PreprocessedSource& source, const std::string& fallbackFile)
 {
     static const std::regex mesa(R"(^\s*(\d+):(\d+)\(\d+\):\s*(.*)$)");
     static const std::regex nvidia(R"(^\s*(\d+)\((\d+)\)\s*:\s*(.*)$)");
@@ -135,10 +142,7 @@ std::string mapLog(const std::string& log, const std::vector<std::string>& files
         std::smatch m;
         std::string mapped;
         if (std::regex_match(line, m, mesa) || std::regex_match(line, m, nvidia)) {
-            long encoded = std::stol(m[2].str());
-            std::size_t fileIndex = static_cast<std::size_t>(encoded / kLineStride);
-            std::string file = fileIndex < files.size() ? files[fileIndex] : fallbackFile;
-            mapped = "glsl/" + file + ":" + std::to_string(encoded % kLineStride) + ": " + m[3].str();
+            mapped = sourceLocation(source, std::stol(m[2].str())) + ": " + m[3].str();
         } else if (!line.empty()) {
             mapped = "glsl/" + fallbackFile + ": " + line;
         } else {
@@ -182,7 +186,7 @@ Program ShaderLoader::load(const std::string& name, const std::vector<ShaderStag
             glGetShaderInfoLog(shader, length, nullptr, log.data());
             cleanup();
             glDeleteProgram(program);
-            throw Error(mapLog(log, source.files, stage.file));
+            throw Error(mapLog(log, source, stage.file));
         }
         glAttachShader(program, shader);
     }

@@ -22,12 +22,17 @@ struct PreprocessedSource {
     std::vector<std::string> files; // source-string number -> file relative to glsl/
 };
 
+// "glsl/<file>:<line>" for a line number as a compiler reports it for `source` (the driver, or
+// glslangValidator in the shader-validation test): preprocess() encodes the file in the #line numbers.
+std::string sourceLocation(const PreprocessedSource& source, long reportedLine);
+
 class ShaderLoader {
 public:
     explicit ShaderLoader(std::string glslDirectory = defaultDirectory());
     // $VPLGI_GLSL_DIR if set, else the source tree's glsl/ (compiled in).
     static std::string defaultDirectory();
 
+    // CPU only (no GL context needed): what load() hands the driver for one stage.
     PreprocessedSource preprocess(const std::string& file, const std::vector<std::string>& defines) const;
     // Compiles and links; throws Error "glsl/<file>:<line>: <message>" on the first error.
     Program load(const std::string& name, const std::vector<ShaderStage>& stages,
