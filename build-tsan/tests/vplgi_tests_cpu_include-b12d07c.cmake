@@ -1,5 +1,0 @@
-if(EXISTS "/work/main/build-tsan/tests/vplgi_tests_cpu_tests-b12d07c.cmake")
-  include("/work/main/build-tsan/tests/vplgi_tests_cpu_tests-b12d07c.cmake")
-else()
-  add_test(vplgi_tests_cpu_NOT_BUILT-b12d07c vplgi_tests_cpu_NOT_BUILT-b12d07c)
-endif()
