@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/builtin_scenes.h"
 #include "core/metrics.h"
@@ -48,9 +49,12 @@ TEST_CASE("smcir-rt on the furnace converges to rho * L_all as I grows (no clamp
     };
     const double small = relativeError(256);
     const double large = relativeError(4096);
-    INFO("relative error of the indirect radiance: I = 256: " << small << ", I = 4096: " << large);
+    std::printf("smcir-rt furnace, relative error of the indirect radiance: I = 256: %+.4f, I = 4096: %+.4f\n", small,
+                large);
     CHECK(std::abs(large) < std::abs(small));
-    CHECK(std::abs(large) < 0.1);
+    // Measured +42% at I = 256 and +3.5% at I = 4096 (k = 1 candidates, eq. 8 rendering k); 8% is
+    // about 2.3x the large-I bias.
+    CHECK(std::abs(large) < 0.08);
 }
 
 TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect image as I grows", "[smcir][cornell]")
@@ -86,13 +90,15 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     const ImageErrors large = errorWith(8192);
     // The grid-count density option (not in the paper) must not make the distribution worse.
     const ImageErrors grid = errorWith(512, true);
-    INFO("I = 512 with grid candidate density: rmse " << grid.rmse << ", |E| " << grid.meanAbsToneMapped);
+    std::printf("smcir-rt cornell vs clamped reference: I = 512: rmse %.5f |E| %.5f bias %+.4f; I = 8192: rmse %.5f "
+                "|E| %.5f bias %+.4f; I = 512 with grid density: rmse %.5f |E| %.5f\n",
+                small.rmse, small.meanAbsToneMapped, small.meanRelativeLuminance, large.rmse, large.meanAbsToneMapped,
+                large.meanRelativeLuminance, grid.rmse, grid.meanAbsToneMapped);
     CHECK(grid.rmse < 1.5 * small.rmse);
-    INFO("I = 512: rmse " << small.rmse << ", |E| " << small.meanAbsToneMapped << ", bias " << small.meanRelativeLuminance);
-    INFO("I = 8192: rmse " << large.rmse << ", |E| " << large.meanAbsToneMapped << ", bias " << large.meanRelativeLuminance);
     CHECK(large.rmse < small.rmse);
     CHECK(large.meanAbsToneMapped < small.meanAbsToneMapped);
-    CHECK(std::abs(large.meanRelativeLuminance) < 0.05);
+    // Measured bias +1.1% at I = 8192 (+23% at I = 512); 3% is about 2.7x it.
+    CHECK(std::abs(large.meanRelativeLuminance) < 0.03);
 }
 
 TEST_CASE("screened candidates: VPLs still carry full radiance estimates", "[smcir][furnace]")
@@ -120,7 +126,8 @@ TEST_CASE("screened candidates: VPLs still carry full radiance estimates", "[smc
     };
     const double full = worstDeviation(0);
     const double screened = worstDeviation(1);
-    INFO("worst VPL radiance deviation: paper " << full << ", screened with 1 sample " << screened);
+    std::printf("screened candidates, worst VPL radiance deviation: paper %.4f, screened with 1 sample %.4f\n", full,
+                screened);
     CHECK(screened < 0.1);
     CHECK(screened < 2.0 * full + 0.02);
 }
