@@ -10,62 +10,17 @@
 #include <random>
 
 #include "glsl/shared/brdf.h"
+#include "brdf_quadrature.h"
 #include "measured.h"
 
 using namespace vplgi;
+using test::integrateAboutNormal;
+using test::polarDirection;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 const glm::vec3 kNormal(0.0f, 0.0f, 1.0f);
-
-// Integrates g(theta, phi) sin(theta) over the hemisphere theta in [0, pi/2], phi in [0, 2 pi), by
-// the midpoint rule in s with theta = (pi/2) s^4, which puts most nodes near the pole: at
-// alpha = 0.002 (kMinAlpha) the GGX lobe about the normal is ~0.002 rad wide and still gets
-// hundreds of nodes. `phiSymmetric`: g is even in phi, so [0, pi] is integrated and doubled.
-template <typename Integrand>
-double integrateAboutNormal(Integrand g, int thetaNodes, int phiNodes, bool phiSymmetric)
-{
-    const double phiRange = phiSymmetric ? kPi : 2.0 * kPi;
-    double sum = 0.0;
-    for (int i = 0; i < thetaNodes; ++i) {
-        const double s = (i + 0.5) / thetaNodes;
-        const double theta = 0.5 * kPi * s * s * s * s;
-        const double dTheta = 2.0 * kPi * s * s * s / thetaNodes; // d/ds of (pi/2) s^4, times ds
-        for (int j = 0; j < phiNodes; ++j) {
-            const double phi = phiRange * (j + 0.5) / phiNodes;
-            sum += g(theta, phi) * std::sin(theta) * dTheta * (phiRange / phiNodes);
-        }
-    }
-    return phiSymmetric ? 2.0 * sum : sum;
-}
-
-glm::vec3 direction(double theta, double phi)
-{
-    return glm::vec3(static_cast<float>(std::sin(theta) * std::cos(phi)),
-                     static_cast<float>(std::sin(theta) * std::sin(phi)), static_cast<float>(std::cos(theta)));
-}
-
-// Directional albedo int f_r(wo, wi) cos(theta_i) dwi, integrated over half vectors h about the
-// normal (wi = reflect(-wo, h), dwi = 4 (wo.h) dh), where the GGX lobe is narrow and centred for
-// every wo. Uses evaluateBRDF only: nothing of the path tracer's sampling.
-glm::dvec3 albedoOverHalfVectors(const shared::SurfaceMaterial& material, const glm::vec3& wo)
-{
-    glm::dvec3 albedo(0.0);
-    for (int c = 0; c < 3; ++c) {
-        albedo[c] = integrateAboutNormal(
-            [&](double theta, double phi) {
-                const glm::vec3 h = direction(theta, phi);
-                const float woh = glm::dot(wo, h);
-                if (woh <= 0.0f) return 0.0;
-                const glm::vec3 wi = 2.0f * woh * h - wo;
-                if (wi.z <= 0.0f) return 0.0;
-                return static_cast<double>(shared::evaluateBRDF(material, kNormal, wo, wi)[c]) * wi.z * 4.0 * woh;
-            },
-            2000, 256, wo.y == 0.0f);
-    }
-    return albedo;
-}
 
 } // namespace
 
@@ -93,7 +48,7 @@ TEST_CASE("GGX NDF is normalised: the integral of D(h) (n.h) over the hemisphere
     };
     for (const Case& c : cases) {
         const float alpha = c.alpha;
-        const double integral = integrateAboutNormal(
+        const double integral = integrateAboutNormal<double>(
             [alpha](double theta, double) {
                 const float cosine = static_cast<float>(std::cos(theta));
                 return static_cast<double>(shared::distributionGGX(cosine, alpha)) * cosine;
@@ -145,7 +100,7 @@ TEST_CASE("white furnace: directional albedo <= 1 for every roughness, Lambert a
     {
         shared::SurfaceMaterial roughest = white;
         roughest.roughness = 1.0f;
-        const double albedo = albedoOverHalfVectors(roughest, kNormal).g;
+        const double albedo = test::directionalAlbedo(roughest, 0.0).g;
         MEASURED("white furnace, roughness 1, normal view: albedo - (1 - ln 2) = " << albedo - (1.0 - std::log(2.0)));
         CHECK(std::abs(albedo - (1.0 - std::log(2.0))) < 7e-7); // measured 2.7e-7
     }
@@ -159,8 +114,7 @@ TEST_CASE("white furnace: directional albedo <= 1 for every roughness, Lambert a
         for (float thetaO : {0.0f, 0.5f, 1.0f, 1.3f, 1.5f}) {
             shared::SurfaceMaterial material = white;
             material.roughness = roughness;
-            const glm::vec3 wo(std::sin(thetaO), 0.0f, std::cos(thetaO));
-            const double albedo = albedoOverHalfVectors(material, wo).g;
+            const double albedo = test::directionalAlbedo(material, thetaO).g;
             INFO("roughness " << roughness << ", theta_o " << thetaO << ": albedo " << albedo);
             highest = std::max(highest, albedo);
             if (roughness >= 0.2f) highestRough = std::max(highestRough, albedo);
@@ -180,9 +134,9 @@ TEST_CASE("white furnace: directional albedo <= 1 for every roughness, Lambert a
     const glm::vec3 wo = glm::normalize(glm::vec3(0.4f, 0.2f, 0.8f));
     double worstLambert = 0.0;
     for (int c = 0; c < 3; ++c) {
-        const double albedo = integrateAboutNormal(
+        const double albedo = integrateAboutNormal<double>(
             [&](double theta, double phi) {
-                const glm::vec3 wi = direction(theta, phi);
+                const glm::vec3 wi = polarDirection(theta, phi);
                 return static_cast<double>(shared::evaluateBRDF(lambert, kNormal, wo, wi)[c]) * wi.z;
             },
             4000, 64, false);
