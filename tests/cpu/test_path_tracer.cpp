@@ -653,3 +653,33 @@ TEST_CASE("reference parameters: one field list, checked ranges", "[reference][p
     CHECK_THROWS_AS(renderReference(scene, rays, scene.cameras[0], 4, 4, zero), Error);
     CHECK_THROWS_AS(renderReference(scene, rays, scene.cameras[0], 0, 4, PathTracerParams{}), Error);
 }
+
+TEST_CASE("the reference cache key covers every image-changing parameter and the version", "[reference][params]")
+{
+    const PathTracerParams defaults;
+    const std::string key = pathTracerImageKey(defaults);
+    CHECK(key.find("pathTracerVersion=" + std::to_string(kPathTracerVersion) + "\n") != std::string::npos);
+    auto changed = [&](auto change) {
+        PathTracerParams p = defaults;
+        change(p);
+        return pathTracerImageKey(p) != key;
+    };
+    CHECK(changed([](PathTracerParams& p) { p.spp += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.maxDepth += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.rrStartDepth += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.mode = Mode::Direct; }));
+    CHECK(changed([](PathTracerParams& p) { p.clampGeometry = std::nextafter(p.clampGeometry, 1e9f); })); // exact
+    CHECK(changed([](PathTracerParams& p) { p.seed += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.jitterPixels = !p.jitterPixels; }));
+    // When the render stops is not what a complete render gives: same key.
+    CHECK_FALSE(changed([](PathTracerParams& p) { p.progress = !p.progress; }));
+    CHECK_FALSE(changed([](PathTracerParams& p) { p.timeBudgetSeconds = 30.0; }));
+
+    // Every field visitParams visits is in the key but those two, so a field added later is keyed
+    // without a change here: one line per field, plus the version.
+    ParamDumper dumper;
+    PathTracerParams visited = defaults;
+    visited.visitParams(dumper);
+    const auto lines = static_cast<std::size_t>(std::count(key.begin(), key.end(), '\n'));
+    CHECK(lines == dumper.values().size() - 2 + 1);
+}
