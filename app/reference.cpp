@@ -33,12 +33,7 @@ std::string cacheKey(const ReferenceRequest& r)
     hashCamera(h, r.camera);
     h.value(r.width);
     h.value(r.height);
-    h.value(r.params.mode);
-    h.value(r.params.spp);
-    h.value(r.params.maxDepth);
-    h.value(r.params.rrStartDepth);
-    h.value(r.params.clampGeometry);
-    h.value(r.params.seed);
+    h.text(pathTracerImageKey(r.params)); // every image-changing parameter and the integrator's version
     return h.hex();
 }
 

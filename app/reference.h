@@ -1,5 +1,6 @@
-// Path-traced references with an on-disk cache keyed by scene content, camera, size, mode, spp
-// and seed, so tests and reports reuse references instead of re-rendering them.
+// Path-traced references with an on-disk cache keyed by scene content, camera, size, every
+// parameter that changes the image and the path tracer's version (pathTracerImageKey), so tests
+// and reports reuse references instead of re-rendering them.
 #pragma once
 
 #include <string>

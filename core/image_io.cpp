@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <random>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "error.h"
@@ -30,27 +34,51 @@ fs::path temporarySibling(const fs::path& target)
     return target.parent_path() / name;
 }
 
+// Writes `bytes` to `file` and closes it, reporting any failure (a full disk, a file size limit,
+// an I/O error) as the errno text; the caller removes the file.
+bool writeBytes(const fs::path& file, const std::vector<unsigned char>& bytes, std::string& message)
+{
+    std::FILE* stream = std::fopen(file.c_str(), "wb");
+    if (stream == nullptr) {
+        message = std::strerror(errno);
+        return false;
+    }
+    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), stream) == bytes.size();
+    if (!ok) message = std::strerror(errno);
+    if (std::fclose(stream) != 0 && ok) { // fclose flushes: a late error shows here
+        message = std::strerror(errno);
+        ok = false;
+    }
+    return ok;
+}
+
 void writeAtomically(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* pixels)
 {
     checkOutputPath(path);
     fs::path target(path);
     fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     require(fs::is_directory(directory), path + ": directory " + directory.string() + " does not exist");
-    fs::path temporary = temporarySibling(directory / target.filename());
+    // Encode in memory, then write the bytes with every error checked: OpenImageIO's PNG writer
+    // does not report failed writes to its file (with a full disk it "succeeds" with a truncated
+    // file), so it never touches the file itself.
+    std::vector<unsigned char> encoded;
     {
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(temporary.string());
-        require(out != nullptr, path + ": cannot write this format");
+        OIIO::Filesystem::IOVecOutput proxy(encoded);
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.filename().string());
+        require(out != nullptr && out->supports("ioproxy"), path + ": cannot write this format");
         OIIO::ImageSpec spec(width, height, 4, type);
         if (type == OIIO::TypeDesc::FLOAT) spec.attribute("compression", "zip");
-        bool ok = out->open(temporary.string(), spec) && out->write_image(type, pixels) && out->close();
-        if (!ok) {
-            std::string message = out->geterror();
-            std::error_code ec;
-            fs::remove(temporary, ec);
-            throw Error(path + ": write failed: " + message);
-        }
+        bool ok = out->set_ioproxy(&proxy) && out->open(target.filename().string(), spec) &&
+                  out->write_image(type, pixels) && out->close();
+        if (!ok) throw Error(path + ": write failed: " + out->geterror());
     }
+    fs::path temporary = temporarySibling(directory / target.filename());
+    std::string message;
     std::error_code ec;
+    if (!writeBytes(temporary, encoded, message)) {
+        fs::remove(temporary, ec);
+        throw Error(path + ": write failed: " + message);
+    }
     fs::rename(temporary, target, ec);
     if (ec) {
         fs::remove(temporary, ec);

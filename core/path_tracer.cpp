@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <tbb/blocked_range2d.h>
@@ -44,6 +46,41 @@ void PathTracerParams::visitParams(ParamVisitor& v)
     v.field("reference.untexturedBounces", untexturedBounces,
             "beyond the primary hit, mean material albedos and no normal maps (SMCIR 5: the reference for VPLs "
             "made on an untextured scene)");
+}
+
+namespace {
+
+// Collects "key=value" lines of the visited fields that change the image, values exact.
+class ImageKeyVisitor final : public ParamVisitor {
+public:
+    void field(const std::string& key, float& value, float, float, const char*) override
+    {
+        std::ostringstream s;
+        s << std::hexfloat << value;
+        add(key, s.str());
+    }
+    void field(const std::string& key, int& value, int, int, const char*) override { add(key, std::to_string(value)); }
+    void field(const std::string& key, bool& value, const char*) override { add(key, value ? "true" : "false"); }
+    void field(const std::string& key, std::uint32_t& value, const char*) override { add(key, std::to_string(value)); }
+    std::string text;
+
+private:
+    void add(const std::string& key, const std::string& value)
+    {
+        if (key == "reference.progress" || key == "reference.timeBudgetSeconds") return;
+        text += key + "=" + value + "\n";
+    }
+};
+
+} // namespace
+
+std::string pathTracerImageKey(const PathTracerParams& params)
+{
+    PathTracerParams copy = params; // visitParams takes a non-const visitor over mutable fields
+    ImageKeyVisitor visitor;
+    visitor.text = "pathTracerVersion=" + std::to_string(kPathTracerVersion) + "\n";
+    copy.visitParams(visitor);
+    return visitor.text;
 }
 
 namespace {

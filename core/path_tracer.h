@@ -114,6 +114,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -146,9 +147,22 @@ struct PathTracerParams {
                                     // albedos, no normal maps): SMCIR 5's reference for its VPLs
 
     // Keys "reference.<field>": spp, maxDepth, rrStartDepth, mode (0 full, 1 direct, 2 indirect,
-    // 3 clamped), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress.
+    // 3 clamped), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress,
+    // jitterPixels.
     void visitParams(ParamVisitor& visitor);
 };
+
+// The version of the integrator's output. Bump it whenever the same scene, camera and parameters
+// would give a different image (sampling, MIS, Russian roulette, random streams, camera rays, the
+// shared BRDF...): cached references carry it in their key, so an older integrator's images are
+// not served for the new one's.
+constexpr int kPathTracerVersion = 1;
+
+// Text identifying the image `params` ask for, for cache keys: kPathTracerVersion and every field
+// visitParams visits, exact values (floats in hex), except reference.progress and
+// reference.timeBudgetSeconds (they change when the render stops, not what a complete render
+// gives). A field added to visitParams later is in the key without anyone remembering it.
+std::string pathTracerImageKey(const PathTracerParams& params);
 
 struct ReferenceResult {
     ImageRGBA32F image; // radiance [W/(m^2 sr)], linear RGB, rows top to bottom, alpha 1

@@ -5,6 +5,7 @@ set -eu
 vplgi="$1"
 shared="${2:-}"
 here="$(cd "$(dirname "$0")/../.." && pwd)"
+. "$here/tests/cli/shared_assets.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -53,13 +54,11 @@ test -s "$work/c.exr"
 "$vplgi" render --scene "$here/scenes/maze.json" --frames 3 --width 64 --height 48 --out "$work/m.png" --quiet >/dev/null
 test -s "$work/m.png"
 
-# A glTF file as --scene (from ../shared when present).
-if [ -n "$shared" ] && [ -f "$shared/scenes/cornell-box/CornellBox.glb" ]; then
-  "$vplgi" render --scene "$shared/scenes/cornell-box/CornellBox.glb" --width 64 --height 48 --out "$work/g.png" --quiet >/dev/null
+# A glTF file as --scene (from the shared assets: skipped when absent, failed when CI=true).
+if find_shared_asset scenes/cornell-box/CornellBox.glb "$shared"; then
+  "$vplgi" render --scene "$shared_asset_path" --width 64 --height 48 --out "$work/g.png" --quiet >/dev/null
   mean=$(mean_of "$work/g.png"); echo "CornellBox.glb: mean display value $mean"
   python3 -c "import sys; sys.exit(0 if float('$mean') > 8 else 1)"
-else
-  echo "skipped: ../shared/scenes/cornell-box/CornellBox.glb is absent"
 fi
 echo "render checks passed"
 

@@ -17,6 +17,23 @@ import sys; sys.exit(0 if open(sys.argv[1],'rb').read()[-4096:] == open(sys.argv
 PY
 echo "reference: rendered once, then read from the cache"
 
+# Any changed input misses the cache (scene, camera size, spp, mode, any reference.* parameter
+# such as jitterPixels); a changed time budget alone does not (a complete render does not depend
+# on it). The integrator's version is in the key too (unit test: "the reference cache key ...").
+ref() { "$vplgi" reference --width 32 --cache "$cache" --out "$work/m.exr" "$@" > "$work/m.log" 2>&1; }
+base="--scene cornell --mode direct --spp 4 --height 32"
+for change in "--scene furnace --mode direct --spp 4 --height 32" "--scene cornell --mode full --spp 4 --height 32" \
+              "--scene cornell --mode direct --spp 5 --height 32" "--scene cornell --mode direct --spp 4 --height 31" \
+              "$base --set reference.jitterPixels=false" "$base --set reference.seed=2" "$base --set reference.maxDepth=2"; do
+  # shellcheck disable=SC2086 # the options are split on purpose
+  ref $change
+  grep -q "rendered [45] spp" "$work/m.log" || { echo "FAIL: cache hit after changing: $change"; cat "$work/m.log"; exit 1; }
+done
+# shellcheck disable=SC2086
+ref $base --time-budget 1000
+grep -q "from cache" "$work/m.log" || { echo "FAIL: a time budget alone missed the cache"; cat "$work/m.log"; exit 1; }
+echo "reference: every changed input misses the cache, a time budget alone does not"
+
 "$vplgi" compare --scene "$here/scenes/cornell.json" --techniques direct --width 48 --height 48 --spp 8 \
   --cache "$cache" --out "$work/cmp" > "$work/c.log" 2>&1
 for part in '<table' 'images/reference-f0000.png' 'images/direct-f0000.png' 'images/direct-f0000-error.png' \

@@ -17,6 +17,8 @@
 #include "core/params.h"
 #include "core/path_tracer.h"
 #include "core/ray_scene.h"
+#include "brdf_quadrature.h"
+#include "measured.h"
 
 using namespace vplgi;
 using Mode = PathTracerParams::Mode;
@@ -49,18 +51,12 @@ ImageRGBA32F render(const Scene& scene, const RayScene& rays, const Camera& came
     return result.image;
 }
 
-// The inside of the cube [-1,1]^3: six inward-facing walls of cells x cells quads, one Lambertian
-// material of grey albedo rho that also emits radiance Le from its front (inner) side.
-Scene makeEmissiveBox(float rho, const glm::vec3& emission, int cells)
+// The inside of the cube [-1,1]^3: six inward-facing walls of cells x cells quads, all of one
+// material that also emits radiance material.emission from its front (inner) side.
+Scene makeEmissiveBox(const Material& material, int cells)
 {
     Scene scene;
     scene.name = "emissive box";
-    Material material;
-    material.baseColor = glm::vec4(glm::vec3(rho), 1.0f);
-    material.metallic = 0.0f;
-    material.roughness = 1.0f;
-    material.specular = 0.0f; // exactly Lambertian
-    material.emission = emission;
     scene.materials.push_back(material);
     Mesh mesh;
     mesh.material = 0;
@@ -103,6 +99,18 @@ Scene makeEmissiveBox(float rho, const glm::vec3& emission, int cells)
     scene.cameras.push_back(camera);
     scene.validate();
     return scene;
+}
+
+// The same box, Lambertian of grey albedo rho.
+Scene makeEmissiveBox(float rho, const glm::vec3& emission, int cells)
+{
+    Material material;
+    material.baseColor = glm::vec4(glm::vec3(rho), 1.0f);
+    material.metallic = 0.0f;
+    material.roughness = 1.0f;
+    material.specular = 0.0f; // exactly Lambertian
+    material.emission = emission;
+    return makeEmissiveBox(material, cells);
 }
 
 glm::vec3 cornellPoint(float xMillimetres, float zMillimetres)
@@ -156,7 +164,7 @@ bool identical(const ImageRGBA32F& a, const ImageRGBA32F& b)
 
 } // namespace
 
-TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match the closed forms", "[reference]")
+TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match the closed forms", "[reference][numbers]")
 {
     // The closed forms hold for the ideal sphere; the default 96 x 192 tessellation is within 1e-3 of
     // it (flat facets change distances and cosines by about (pi/96)^2 / 8).
@@ -179,22 +187,24 @@ TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match 
         params.spp = 4;
         params.mode = Mode::Direct;
         const double direct = meanGrey(render(scene, rays, camera, 16, params));
-        CHECK(direct == Approx(l1).epsilon(0.01));
+        // Tolerances from here on: 2-3x the larger relative deviation measured over the two furnaces
+        // (MEASURED prints them); the facets' 1e-3-level error is part of what is measured.
+        CHECK(direct == Approx(l1).epsilon(1e-3)); // measured +3.4e-4 (both)
 
         params.spp = 1024; // standard error about 0.12 % (full) and 0.15 % (indirect) at rho = 0.8
         params.mode = Mode::Full;
         const double full = meanGrey(render(scene, rays, camera, 16, params));
-        CHECK(full == Approx(all).epsilon(0.01));
+        CHECK(full == Approx(all).epsilon(2e-3)); // measured -8.3e-4 (rho 0.5), +1.9e-4 (rho 0.8)
 
         params.mode = Mode::Indirect;
         const double indirect = meanGrey(render(scene, rays, camera, 16, params));
-        CHECK(indirect == Approx(all - l1).epsilon(0.01));
+        CHECK(indirect == Approx(all - l1).epsilon(5e-3)); // measured -2.0e-3, +1.6e-4
 
         // maxDepth = 2: light reflected at most twice; without the direct part only L_2 is left.
         params.maxDepth = 2;
         params.spp = 16;
         const double oneBounce = meanGrey(render(scene, rays, camera, 16, params));
-        CHECK(oneBounce == Approx(l2).epsilon(0.01));
+        CHECK(oneBounce == Approx(l2).epsilon(7.5e-4)); // measured +3.0e-4 (both)
 
         // Inside a sphere G = 1/(4R^2) for every pair of wall points, so G_max = 0.4/(4R^2) scales every
         // path by exactly 0.4 (MATH.md 1.2).
@@ -203,11 +213,15 @@ TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match 
         params.mode = Mode::Clamped;
         params.clampGeometry = 0.4f / (4.0f * furnace.radius * furnace.radius);
         const double clamped = meanGrey(render(scene, rays, camera, 16, params));
-        CHECK(clamped == Approx(0.4 * (all - l1)).epsilon(0.01));
+        CHECK(clamped == Approx(0.4 * (all - l1)).epsilon(3e-3)); // measured -1.07e-3, +3.7e-4
+        MEASURED("furnace rho " << furnace.albedo << ", R " << furnace.radius << ", I0 " << furnace.intensity
+                                << ": relative deviation direct " << direct / l1 - 1.0 << ", full " << full / all - 1.0
+                                << ", indirect " << indirect / (all - l1) - 1.0 << ", one bounce "
+                                << oneBounce / l2 - 1.0 << ", clamped " << clamped / (0.4 * (all - l1)) - 1.0);
     }
 }
 
-TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) direct", "[reference]")
+TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) direct", "[reference][numbers]")
 {
     const glm::vec3 emission(1.0f, 0.5f, 0.25f);
     SECTION("rho = 0.5: full, direct, indirect")
@@ -226,9 +240,16 @@ TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) dir
         const ImageRGBA32F indirect = render(scene, rays, scene.cameras[0], 16, params);
         for (int c = 0; c < 3; ++c) {
             INFO("channel " << c);
-            CHECK(meanChannel(full, c) == Approx(emission[c] / (1.0 - rho)).epsilon(0.01));
-            CHECK(meanChannel(direct, c) == Approx(emission[c] * (1.0 + rho)).epsilon(0.01));
-            CHECK(meanChannel(indirect, c) == Approx(emission[c] * rho * rho / (1.0 - rho)).epsilon(0.01));
+            // Tolerances 2-3x the measured relative deviations (the same in every channel: grey walls).
+            CHECK(meanChannel(full, c) == Approx(emission[c] / (1.0 - rho)).epsilon(2.5e-4)); // measured -8.9e-5
+            CHECK(meanChannel(direct, c) == Approx(emission[c] * (1.0 + rho)).epsilon(2e-5)); // measured -6.3e-6
+            CHECK(meanChannel(indirect, c) ==
+                  Approx(emission[c] * rho * rho / (1.0 - rho)).epsilon(1e-3)); // measured -3.4e-4
+            MEASURED("closed box rho 0.5, channel " << c << ": relative deviation full "
+                                                    << meanChannel(full, c) / (emission[c] / (1.0 - rho)) - 1.0
+                                                    << ", direct " << meanChannel(direct, c) / (emission[c] * (1.0 + rho)) - 1.0
+                                                    << ", indirect "
+                                                    << meanChannel(indirect, c) / (emission[c] * rho * rho / (1.0 - rho)) - 1.0);
         }
     }
     SECTION("rho = 0.8: full")
@@ -242,12 +263,84 @@ TEST_CASE("closed emissive box: radiance is Le/(1-rho) everywhere, Le(1+rho) dir
         const ImageRGBA32F full = render(scene, rays, scene.cameras[0], 16, params);
         for (int c = 0; c < 3; ++c) {
             INFO("channel " << c);
-            CHECK(meanChannel(full, c) == Approx(emission[c] / (1.0 - rho)).epsilon(0.01));
+            CHECK(meanChannel(full, c) == Approx(emission[c] / (1.0 - rho)).epsilon(2e-4)); // measured -6.8e-5
+            MEASURED("closed box rho 0.8, channel " << c << ": relative deviation full "
+                                                    << meanChannel(full, c) / (emission[c] / (1.0 - rho)) - 1.0);
         }
     }
 }
 
-TEST_CASE("white box (albedo 1) conserves energy: each bounce adds exactly Le", "[reference]")
+TEST_CASE("glossy closed box: direct radiance is Le (1 + albedo(wo)) at every pixel", "[reference][numbers]")
+{
+    // Every wall is one glossy metal (GGX only, no Lambert lobe) that emits Le. Whatever direction a
+    // primary hit's reflection looks in, it sees a wall emitting Le, so the direct mode (emission +
+    // one reflection) is Le (1 + albedo(wo)), albedo the BRDF's directional albedo at the view angle:
+    // a glossy closed form for the path tracer's light sampling, BRDF sampling and MIS at once. The
+    // albedo comes from a quadrature of evaluateBRDF (tests/common/brdf_quadrature.h), the primary
+    // hit from an analytic ray-cube intersection: nothing of the path tracer's own code.
+    const glm::vec3 emission(1.0f, 0.5f, 0.25f);
+    Material material;
+    material.baseColor = glm::vec4(0.95f, 0.64f, 0.54f, 1.0f); // copper-like F0
+    material.metallic = 1.0f;
+    material.specular = 1.0f;
+    material.emission = emission;
+    const int size = 16;
+    for (float roughness : {0.2f, 0.5f}) {
+        material.roughness = roughness;
+        const Scene scene = makeEmissiveBox(material, 2);
+        const RayScene rays(scene);
+        const Camera& camera = scene.cameras[0];
+        PathTracerParams params;
+        params.mode = Mode::Direct;
+        params.spp = 8192;
+        params.jitterPixels = false; // every sample through the pixel centre: one wo per pixel
+        const ImageRGBA32F image = render(scene, rays, camera, size, params);
+
+        const shared::SurfaceMaterial surface{glm::vec3(material.baseColor), material.metallic, material.roughness,
+                                              material.specular};
+        const glm::mat4 worldFromClip = glm::inverse(camera.clipFromView(1.0f) * camera.viewFromWorld());
+        glm::dvec3 sumImage(0.0), sumExpected(0.0);
+        double worst = 0.0;
+        int used = 0;
+        for (int y = 0; y < size; ++y) {
+            for (int x = 0; x < size; ++x) {
+                const glm::vec2 ndc((x + 0.5f) / size * 2.0f - 1.0f, 1.0f - (y + 0.5f) / size * 2.0f);
+                const glm::vec4 nearPoint = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
+                const glm::vec4 farPoint = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
+                const glm::dvec3 d = glm::normalize(glm::dvec3(farPoint) / double(farPoint.w) -
+                                                    glm::dvec3(nearPoint) / double(nearPoint.w));
+                // From inside the cube the ray leaves through the wall of the axis it reaches first.
+                double t[3];
+                for (int a = 0; a < 3; ++a) t[a] = ((d[a] > 0.0 ? 1.0 : -1.0) - camera.position[a]) / d[a];
+                const int axis = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+                const double second = std::min(t[(axis + 1) % 3], t[(axis + 2) % 3]);
+                if (second - t[axis] < 1e-3) continue; // on an edge: the wall is ambiguous
+                const double cosThetaO = std::abs(d[axis]); // the wall's normal is the axis
+                const glm::dvec3 albedo = test::directionalAlbedo(surface, std::acos(cosThetaO), 400, 128);
+                const float* pixel = image.at(x, y);
+                for (int c = 0; c < 3; ++c) {
+                    const double expected = emission[c] * (1.0 + albedo[c]);
+                    worst = std::max(worst, std::abs(pixel[c] / expected - 1.0));
+                    sumImage[c] += pixel[c];
+                    sumExpected[c] += expected;
+                }
+                ++used;
+            }
+        }
+        const glm::dvec3 bias = sumImage / sumExpected - 1.0;
+        MEASURED("glossy box, roughness " << roughness << ", 8192 spp: worst pixel relative error " << worst
+                                          << ", bias of the mean per channel " << bias.r << " " << bias.g << " "
+                                          << bias.b << " over " << used << " pixels");
+        CHECK(used > size * size * 3 / 4);
+        // Measured at 8192 spp: worst pixel 0.32% (roughness 0.2) and 0.64% (0.5), Monte Carlo noise
+        // of one pixel's estimate; the quadrature's own error is below 2e-5.
+        CHECK(worst < 0.015);
+        // Measured: |bias of the mean| <= 1.8e-4 (noise of the 256-pixel mean).
+        for (int c = 0; c < 3; ++c) CHECK(std::abs(bias[c]) < 5e-4);
+    }
+}
+
+TEST_CASE("white box (albedo 1) conserves energy: each bounce adds exactly Le", "[reference][numbers]")
 {
     // With rho = 1 nothing is absorbed, so the full series diverges; with the depth capped at n (and
     // no Russian roulette) each of the n + 1 vertices contributes exactly Le in expectation:
@@ -262,11 +355,14 @@ TEST_CASE("white box (albedo 1) conserves energy: each bounce adds exactly Le", 
         params.spp = 64;
         const ImageRGBA32F image = render(scene, rays, scene.cameras[0], 8, params);
         INFO("maxDepth " << depth);
+        // Measured: exact at depth 0, then +1.6e-3, +3.7e-3, +4.3e-3 (64 spp of noise): 2.3x the worst.
         CHECK(meanChannel(image, 1) == Approx(emission.g * (depth + 1)).epsilon(0.01));
+        MEASURED("white box, maxDepth " << depth << ": relative deviation from (n + 1) Le "
+                                        << meanChannel(image, 1) / (emission.g * (depth + 1)) - 1.0);
     }
 }
 
-TEST_CASE("cornell direct light on the floor matches a quadrature of the emissive quad", "[reference]")
+TEST_CASE("cornell direct light on the floor matches a quadrature of the emissive quad", "[reference][numbers]")
 {
     const Scene scene = makeBuiltinScene("cornell");
     const RayScene rays(scene);
@@ -294,7 +390,9 @@ TEST_CASE("cornell direct light on the floor matches a quadrature of the emissiv
         for (int c = 0; c < 3; ++c) {
             INFO("channel " << c);
             const double expected = white.baseColor[c] / kPi * irradiance[c];
-            CHECK(meanChannel(image, c) == Approx(expected).epsilon(0.02));
+            CHECK(meanChannel(image, c) == Approx(expected).epsilon(2.5e-3)); // measured <= 9.7e-4 (2.6x)
+            MEASURED("cornell floor " << mm[0] << ", " << mm[1] << " mm, channel " << c
+                                      << ": relative deviation from the quadrature " << meanChannel(image, c) / expected - 1.0);
         }
     }
 }
@@ -441,7 +539,6 @@ TEST_CASE("time budget stops between passes; progress is reported on the calling
     ReferenceResult some = renderReference(scene, rays, scene.cameras[0], 16, 16, params);
     CHECK(some.spp >= 1);
     CHECK(some.spp < params.spp);
-    CHECK(some.seconds < 5.0); // loose: the machine may be busy
 
     params.timeBudgetSeconds = 0.0;
     params.spp = 10;
@@ -459,11 +556,13 @@ TEST_CASE("time budget stops between passes; progress is reported on the calling
     CHECK(fractions.back() == 1.0);
 }
 
-TEST_CASE("GGX mixture sampling has an exact pdf: E[f cos / pdf] is the brute-force albedo", "[reference][brdf]")
+TEST_CASE("GGX mixture sampling has an exact pdf: E[f cos / pdf] is the brute-force albedo", "[reference][brdf][numbers]")
 {
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
     shared::SurfaceMaterial plastic{glm::vec3(0.5f, 0.3f, 0.2f), 0.0f, 0.5f, 1.0f};
     shared::SurfaceMaterial gold{glm::vec3(1.0f, 0.78f, 0.34f), 1.0f, 0.5f, 1.0f};
+    double worstAlbedo = 0.0, worstAccepted = 0.0;
+    int cases = 0;
     for (shared::SurfaceMaterial material : {plastic, gold}) {
         for (float roughness : {0.2f, 0.5f, 1.0f}) {
             for (float thetaO : {0.3f, 1.2f}) {
@@ -509,13 +608,21 @@ TEST_CASE("GGX mixture sampling has an exact pdf: E[f cos / pdf] is the brute-fo
                     }
                 }
                 estimate /= samples;
-                for (int c = 0; c < 3; ++c)
-                    CHECK(estimate[c] == Approx(albedo[c]).epsilon(0.01));
+                for (int c = 0; c < 3; ++c) {
+                    CHECK(estimate[c] == Approx(albedo[c]).epsilon(1.5e-3)); // measured <= 5.4e-4 (2.8x)
+                    worstAlbedo = std::max(worstAlbedo, std::abs(estimate[c] / albedo[c] - 1.0));
+                    ++cases;
+                }
                 // Draws below the horizon are rejected: the accepted fraction is the pdf's integral.
-                CHECK(static_cast<double>(accepted) / samples == Approx(pdfIntegral).epsilon(0.01));
+                CHECK(static_cast<double>(accepted) / samples ==
+                      Approx(pdfIntegral).epsilon(1e-3)); // measured <= 3.3e-4 (3x)
+                worstAccepted = std::max(worstAccepted, std::abs(static_cast<double>(accepted) / samples / pdfIntegral - 1.0));
             }
         }
     }
+    MEASURED("GGX + Lambert sampling: worst relative deviation of E[f cos / pdf] from the brute-force albedo "
+             << worstAlbedo << " over " << cases << " cases; of the accepted fraction from the pdf's integral "
+             << worstAccepted);
 }
 
 TEST_CASE("reference parameters: one field list, checked ranges", "[reference][params]")
@@ -545,4 +652,34 @@ TEST_CASE("reference parameters: one field list, checked ranges", "[reference][p
     zero.spp = 0;
     CHECK_THROWS_AS(renderReference(scene, rays, scene.cameras[0], 4, 4, zero), Error);
     CHECK_THROWS_AS(renderReference(scene, rays, scene.cameras[0], 0, 4, PathTracerParams{}), Error);
+}
+
+TEST_CASE("the reference cache key covers every image-changing parameter and the version", "[reference][params]")
+{
+    const PathTracerParams defaults;
+    const std::string key = pathTracerImageKey(defaults);
+    CHECK(key.find("pathTracerVersion=" + std::to_string(kPathTracerVersion) + "\n") != std::string::npos);
+    auto changed = [&](auto change) {
+        PathTracerParams p = defaults;
+        change(p);
+        return pathTracerImageKey(p) != key;
+    };
+    CHECK(changed([](PathTracerParams& p) { p.spp += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.maxDepth += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.rrStartDepth += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.mode = Mode::Direct; }));
+    CHECK(changed([](PathTracerParams& p) { p.clampGeometry = std::nextafter(p.clampGeometry, 1e9f); })); // exact
+    CHECK(changed([](PathTracerParams& p) { p.seed += 1; }));
+    CHECK(changed([](PathTracerParams& p) { p.jitterPixels = !p.jitterPixels; }));
+    // When the render stops is not what a complete render gives: same key.
+    CHECK_FALSE(changed([](PathTracerParams& p) { p.progress = !p.progress; }));
+    CHECK_FALSE(changed([](PathTracerParams& p) { p.timeBudgetSeconds = 30.0; }));
+
+    // Every field visitParams visits is in the key but those two, so a field added later is keyed
+    // without a change here: one line per field, plus the version.
+    ParamDumper dumper;
+    PathTracerParams visited = defaults;
+    visited.visitParams(dumper);
+    const auto lines = static_cast<std::size_t>(std::count(key.begin(), key.end(), '\n'));
+    CHECK(lines == dumper.values().size() - 2 + 1);
 }

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,7 @@
 
 #include "core/error.h"
 #include "core/scene_loader.h"
+#include "shared_assets.h"
 
 #ifndef VPLGI_SOURCE_DIR
 #error "VPLGI_SOURCE_DIR (the repository root) must be defined by the build"
@@ -292,18 +294,6 @@ std::string sixteenBitPng()
     chunk("IDAT", zlib);
     chunk("IEND", "");
     return png;
-}
-
-// The environment wins over the build's VPLGI_SHARED_DIR, which wins over <repo>/../shared.
-fs::path sharedDir()
-{
-    const char* env = std::getenv("VPLGI_SHARED_DIR");
-    if (env != nullptr && *env != '\0') return env;
-#ifdef VPLGI_SHARED_DIR
-    return VPLGI_SHARED_DIR;
-#else
-    return fs::path(VPLGI_SOURCE_DIR) / ".." / "shared";
-#endif
 }
 
 } // namespace
@@ -904,13 +894,10 @@ TEST_CASE("scene files of the repository load and animate", "[scene_loader]")
 
 TEST_CASE("shared test scenes load (skipped when ../shared is absent)", "[scene_loader][shared]")
 {
-    const fs::path shared = sharedDir() / "scenes";
-    const fs::path cornellBox = shared / "cornell-box" / "CornellBox.glb";
-    if (!fs::exists(cornellBox)) {
-        WARN("skipped: " << cornellBox.string() << " not found (set VPLGI_SHARED_DIR)");
-        return;
-    }
-    const vplgi::Scene cornell = vplgi::loadGltf(cornellBox.string());
+    const std::optional<fs::path> cornellBox = vplgi::test::findSharedAsset("scenes/cornell-box/CornellBox.glb");
+    if (!cornellBox) return;
+    const fs::path shared = vplgi::test::sharedAssetsDir() / "scenes";
+    const vplgi::Scene cornell = vplgi::loadGltf(cornellBox->string());
     CHECK(cornell.triangleCount() == 36);
     bool emissive = false;
     for (const vplgi::Material& m : cornell.materials)

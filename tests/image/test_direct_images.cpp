@@ -2,7 +2,8 @@
 //  - furnace: direct radiance inside the sphere is rho I0 / (pi R^2) everywhere (MATH.md section 3);
 //  - cornell: pixels match the CPU evaluation of the same emitters with the same BRDF and Embree
 //    visibility (core/surface.cpp);
-//  - the shared glTF scenes load and render (skipped when ../shared is absent).
+//  - the shared glTF scenes load and render (tests/common/shared_assets.h: skipped when ../shared is
+//    absent, failed when CI=true).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -14,6 +15,8 @@
 #include "core/surface.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
+#include "measured.h"
+#include "shared_assets.h"
 
 using namespace vplgi;
 
@@ -106,7 +109,7 @@ Mesh boxMesh(glm::vec3 lower, glm::vec3 upper, int material)
 
 } // namespace
 
-TEST_CASE("furnace: direct radiance equals rho I0 / (pi R^2)", "[image][furnace]")
+TEST_CASE("furnace: direct radiance equals rho I0 / (pi R^2)", "[image][furnace][numbers]")
 {
     FurnaceParams params;
     params.radius = 1.5f;
@@ -125,13 +128,17 @@ TEST_CASE("furnace: direct radiance equals rho I0 / (pi R^2)", "[image][furnace]
             maxDeviation = std::max(maxDeviation, std::abs(image.at(x, y)[1] / expected - 1.0));
         }
     const double mean = sum / (image.width * image.height);
-    INFO("mean " << mean << " expected " << expected << " max pixel deviation " << maxDeviation);
-    if (std::abs(mean / expected - 1.0) > 0.02) test::saveTestImage("furnace-direct-actual", image);
-    CHECK(mean == Approx(expected).epsilon(0.02));
-    CHECK(maxDeviation < 0.05); // every pixel, not just the mean
+    MEASURED("furnace direct (GPU): mean relative deviation " << mean / expected - 1.0 << ", worst pixel "
+                                                              << maxDeviation);
+    // Tolerances 2-3x the measured: mean -3.0e-4, worst pixel 6.3e-4 (the facets of the 96 x 192
+    // sphere and float shading; llvmpipe).
+    if (std::abs(mean / expected - 1.0) > 7.5e-4 || maxDeviation > 1.5e-3)
+        test::saveTestImage("furnace-direct-actual", image);
+    CHECK(mean == Approx(expected).epsilon(7.5e-4));
+    CHECK(maxDeviation < 1.5e-3); // every pixel, not just the mean
 }
 
-TEST_CASE("cornell: direct light matches the CPU evaluation at floor and wall pixels", "[image][cornell]")
+TEST_CASE("cornell: direct light matches the CPU evaluation at floor and wall pixels", "[image][cornell][numbers]")
 {
     Scene scene = makeBuiltinScene("cornell");
     RendererParams params;
@@ -158,21 +165,28 @@ TEST_CASE("cornell: direct light matches the CPU evaluation at floor and wall pi
         double error = std::abs(lumG / lumC - 1.0);
         worst = std::max(worst, error);
         ++compared;
-        if (error <= 0.05) ++within;
-        CHECK(error <= 0.05);
+        // Measured: worst 4.3e-4 over the ten pixels (same emitters and BRDF, float shading, and a
+        // shadow-map lookup that agrees with the ray away from edges); 2.3x that.
+        if (error <= 1e-3) ++within;
+        CHECK(error <= 1e-3);
     }
-    // Over the whole image (shadow edges included) most pixels must agree as well.
+    // Over the whole image most pixels agree as well. What disagrees is on shadow edges (a 256^2
+    // cube map against exact ray visibility) and at sub-pixel geometry: measured 91.3% of lit
+    // pixels within 1% (93.8% within 5%). Required: 85% within 1%, i.e. at most 1.7x the measured
+    // share of disagreeing pixels (a few more edge pixels on another rasterizer are not a bug).
     int lit = 0;
-    const double agreeing = agreement(gpu, cpu, 0.05, &lit);
-    INFO("whole image: " << agreeing * 100.0 << "% of " << lit << " lit pixels within 5%; worst chosen " << worst);
-    if (within != compared || agreeing < 0.9) {
+    const double agreeing = agreement(gpu, cpu, 0.01, &lit);
+    MEASURED("cornell direct GPU vs CPU: worst relative difference at the chosen pixels " << worst << "; "
+             << agreeing * 100.0 << "% of " << lit << " lit pixels within 1%, " << agreement(gpu, cpu, 0.05) * 100.0
+             << "% within 5%");
+    if (within != compared || agreeing < 0.85) {
         test::saveTestImage("cornell-direct-gpu", gpu);
         test::saveTestImage("cornell-direct-cpu", cpu);
     }
-    CHECK(agreeing >= 0.9);
+    CHECK(agreeing >= 0.85);
 }
 
-TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluation", "[image][lights]")
+TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluation", "[image][lights][numbers]")
 {
     // A floor, two boxes (one glossy metal, one glossy dielectric), a spot light and a sun.
     Scene scene;
@@ -225,14 +239,17 @@ TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluat
     const ImageRGBA32F gpu = renderer->readDirect();
     const ImageRGBA32F cpu = cpuDirectImage(scene, renderer->lights(), camera, width, height);
     int lit = 0;
-    const double agreeing = agreement(gpu, cpu, 0.05, &lit);
-    INFO(agreeing * 100.0 << "% of " << lit << " lit pixels within 5%");
-    if (agreeing < 0.9) {
+    // Measured: 98.7% of lit pixels within 1% (the rest on shadow edges: a 4096^2 map against
+    // rays); required 97%, at most 2.3x the measured share of disagreeing pixels.
+    const double agreeing = agreement(gpu, cpu, 0.01, &lit);
+    MEASURED("spot and sun GPU vs CPU: " << agreeing * 100.0 << "% of " << lit << " lit pixels within 1%, "
+                                         << agreement(gpu, cpu, 0.05) * 100.0 << "% within 5%");
+    if (agreeing < 0.97) {
         test::saveTestImage("spot-sun-gpu", gpu);
         test::saveTestImage("spot-sun-cpu", cpu);
     }
     CHECK(lit > width * height / 2);
-    CHECK(agreeing >= 0.9);
+    CHECK(agreeing >= 0.97);
 }
 
 TEST_CASE("moving one light re-renders only its shadow cube, with the same image as a fresh render",
@@ -270,13 +287,10 @@ TEST_CASE("moving one light re-renders only its shadow cube, with the same image
 
 TEST_CASE("shared glTF scenes load and render", "[image][shared]")
 {
-    const std::filesystem::path dir = std::filesystem::path(VPLGI_SHARED_DIR) / "scenes";
-    if (!std::filesystem::is_directory(dir)) {
-        WARN("skipped: " << dir.string() << " is absent");
-        return;
-    }
+    const std::optional<std::filesystem::path> dir = test::findSharedAsset("scenes");
+    if (!dir) return;
     int rendered = 0;
-    for (const auto& folder : std::filesystem::directory_iterator(dir)) {
+    for (const auto& folder : std::filesystem::directory_iterator(*dir)) {
         if (!folder.is_directory()) continue;
         for (const auto& file : std::filesystem::directory_iterator(folder.path())) {
             if (file.path().extension() != ".glb") continue;

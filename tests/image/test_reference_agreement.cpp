@@ -13,10 +13,11 @@
 #include "core/ray_scene.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
+#include "measured.h"
 
 using namespace vplgi;
 
-TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell", "[image][reference]")
+TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell", "[image][reference][numbers]")
 {
     test::ensureGLContext();
     Scene scene = makeBuiltinScene("cornell");
@@ -60,15 +61,19 @@ TEST_CASE("direct technique agrees with the path tracer's direct mode on cornell
         }
     const double relativeMeanAbs = sumAbs / sumRef;
     const double bias = sumGpu / sumRef - 1.0;
-    INFO("tone-mapped mean |E| " << errors.meanAbsToneMapped);
-    INFO("relative mean |dY| " << relativeMeanAbs << " and bias of the mean " << bias << " over " << used << " pixels");
-    if (errors.meanAbsToneMapped > 0.03 || relativeMeanAbs > 0.03 || std::abs(bias) > 0.01) {
+    MEASURED("cornell direct GPU vs path tracer (96x96, 512 spp): tone-mapped mean |E| " << errors.meanAbsToneMapped
+             << ", relative mean |dY| " << relativeMeanAbs << ", bias of the mean " << bias << " over " << used
+             << " pixels");
+    // Tolerances 2-3x each measured value (llvmpipe, this seed): |E| 0.00126, relative mean |dY|
+    // 0.0139 (path-tracer noise at 512 spp and shadow-map edges), bias of the mean -3.4e-4.
+    const double maxMeanAbsE = 0.003, maxRelativeMeanAbs = 0.03, maxBias = 1e-3;
+    if (errors.meanAbsToneMapped > maxMeanAbsE || relativeMeanAbs > maxRelativeMeanAbs || std::abs(bias) > maxBias) {
         test::saveTestImage("cornell-direct-gl", gpu);
         test::saveTestImage("cornell-direct-pathtraced", reference);
     }
     CHECK(used > width * height / 2);
-    CHECK(errors.meanAbsToneMapped < 0.03); // the issue's criterion, in SMCIR's tone-mapped metric
-    CHECK(std::abs(bias) < 0.01);           // no systematic difference in light units or BRDF
-    CHECK(relativeMeanAbs < 0.03);          // per pixel, within 3% (path-tracer noise, shadow-map edges)
+    CHECK(errors.meanAbsToneMapped < maxMeanAbsE); // SMCIR's tone-mapped metric (the issue's criterion: 0.03)
+    CHECK(std::abs(bias) < maxBias);               // no systematic difference in light units or BRDF
+    CHECK(relativeMeanAbs < maxRelativeMeanAbs);   // per pixel: 2.2x the measured 1.39%
 
 }
