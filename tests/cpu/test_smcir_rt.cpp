@@ -11,6 +11,7 @@
 #include "core/ray_scene.h"
 #include "core/smcir_sampler.h"
 #include "core/vpl_gather.h"
+#include "measured.h"
 
 using namespace vplgi;
 
@@ -26,7 +27,7 @@ double meanLuminance(const ImageRGBA32F& image)
 
 } // namespace
 
-TEST_CASE("smcir-rt on the furnace converges to rho * L_all as I grows (no clamping)", "[smcir][furnace]")
+TEST_CASE("smcir-rt on the furnace converges to rho * L_all as I grows (no clamping)", "[smcir][furnace][numbers]")
 {
     // SMCIR is consistent, not unbiased: at finite I the kNN density of its blue-noise VPL set
     // (k from eq. 8) overestimates 1/p, and ranking VPLs by their frozen radiance estimates keeps the
@@ -49,15 +50,14 @@ TEST_CASE("smcir-rt on the furnace converges to rho * L_all as I grows (no clamp
     };
     const double small = relativeError(256);
     const double large = relativeError(4096);
-    std::printf("smcir-rt furnace, relative error of the indirect radiance: I = 256: %+.4f, I = 4096: %+.4f\n", small,
-                large);
+    MEASURED("smcir-rt furnace, relative error of the indirect radiance: I = 256: " << small << ", I = 4096: " << large);
     CHECK(std::abs(large) < std::abs(small));
     // Measured +42% at I = 256 and +3.5% at I = 4096 (k = 1 candidates, eq. 8 rendering k); 8% is
     // about 2.3x the large-I bias.
     CHECK(std::abs(large) < 0.08);
 }
 
-TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect image as I grows", "[smcir][cornell]")
+TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect image as I grows", "[smcir][cornell][numbers]")
 {
     Scene scene = makeBuiltinScene("cornell");
     RayScene rays(scene);
@@ -90,10 +90,10 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     const ImageErrors large = errorWith(8192);
     // The grid-count density option (not in the paper) must not make the distribution worse.
     const ImageErrors grid = errorWith(512, true);
-    std::printf("smcir-rt cornell vs clamped reference: I = 512: rmse %.5f |E| %.5f bias %+.4f; I = 8192: rmse %.5f "
-                "|E| %.5f bias %+.4f; I = 512 with grid density: rmse %.5f |E| %.5f\n",
-                small.rmse, small.meanAbsToneMapped, small.meanRelativeLuminance, large.rmse, large.meanAbsToneMapped,
-                large.meanRelativeLuminance, grid.rmse, grid.meanAbsToneMapped);
+    MEASURED("smcir-rt cornell vs clamped reference: I = 512: rmse " << small.rmse << " |E| " << small.meanAbsToneMapped
+             << " bias " << small.meanRelativeLuminance << "; I = 8192: rmse " << large.rmse << " |E| "
+             << large.meanAbsToneMapped << " bias " << large.meanRelativeLuminance
+             << "; I = 512 with grid density: rmse " << grid.rmse << " |E| " << grid.meanAbsToneMapped);
     CHECK(grid.rmse < 1.5 * small.rmse);
     CHECK(large.rmse < small.rmse);
     CHECK(large.meanAbsToneMapped < small.meanAbsToneMapped);
@@ -101,7 +101,7 @@ TEST_CASE("smcir-rt on cornell approaches the path tracer's clamped indirect ima
     CHECK(std::abs(large.meanRelativeLuminance) < 0.03);
 }
 
-TEST_CASE("screened candidates: VPLs still carry full radiance estimates", "[smcir][furnace]")
+TEST_CASE("screened candidates: VPLs still carry full radiance estimates", "[smcir][furnace][numbers]")
 {
     // With candidateRadianceSamples = 1 the candidates are ranked by one-path estimates, but a
     // candidate that becomes a VPL is re-estimated with radiositySamples (line 18): the published
@@ -126,8 +126,7 @@ TEST_CASE("screened candidates: VPLs still carry full radiance estimates", "[smc
     };
     const double full = worstDeviation(0);
     const double screened = worstDeviation(1);
-    std::printf("screened candidates, worst VPL radiance deviation: paper %.4f, screened with 1 sample %.4f\n", full,
-                screened);
+    MEASURED("screened candidates, worst VPL radiance deviation: paper " << full << ", screened with 1 sample " << screened);
     CHECK(screened < 0.1);
     CHECK(screened < 2.0 * full + 0.02);
 }

@@ -20,6 +20,7 @@
 #include "core/ray_scene.h"
 #include "core/smcir_sampler.h"
 #include "core/surface.h"
+#include "measured.h"
 
 using namespace vplgi;
 
@@ -742,13 +743,14 @@ std::pair<double, int> floorBandChiSquare(const Scene& scene, const RayScene& ra
     const double expected = total / 4.0;
     double chi2 = 0.0;
     for (int c : counts) chi2 += (c - expected) * (c - expected) / expected;
-    std::printf("grazing floor bands %d %d %d %d: chi-square %.1f\n", counts[0], counts[1], counts[2], counts[3], chi2);
+    MEASURED("grazing floor, VPLs in four equal-area bands " << counts[0] << " " << counts[1] << " " << counts[2] << " "
+             << counts[3] << ": chi-square " << chi2 << (params.candidateFactor == 1 ? " (no resampling)" : " (16:1 resampling)"));
     return {chi2, total};
 }
 
 } // namespace
 
-TEST_CASE("smcir candidate resampling (3.2.1) is uniform in area on a floor seen at a grazing angle", "[smcir]")
+TEST_CASE("smcir candidate resampling (3.2.1) is uniform in area on a floor seen at a grazing angle", "[smcir][numbers]")
 {
     const Scene scene = grazingFloor();
     const RayScene rays(scene);
