@@ -44,19 +44,34 @@ BenchResult benchOne(Session& session, int width, int height, int warmup, int fr
 {
     BenchResult r;
     r.technique = session.techniqueName();
+    gl::PassTimer& timer = session.renderer().timer();
+    // GPU timestamp queries publish a frame 1-3 frames after it was rendered (at once with glFinish +
+    // wall clock), so samples are taken as frames complete and matched by the index of the frame that
+    // issued them; the last frames are flushed after the loop.
+    timer.resolve(true);
+    timer.takeCompletedFrames();
+    const std::int64_t firstTimed = timer.framesBegun() + warmup;
+    auto addCompleted = [&] {
+        for (const gl::FrameTimes& f : timer.takeCompletedFrames()) {
+            if (f.frame < firstTimed) continue;
+            for (const gl::PassTime& t : f.passes) { // nested scopes appear as "parent / child"
+                if (!r.passes.count(t.path)) r.order.push_back(t.path);
+                r.passes[t.path].samples.push_back(t.milliseconds);
+            }
+            r.total.samples.push_back(f.total());
+        }
+    };
     for (int frame = 0; frame < warmup + frames; ++frame) {
         const float time = static_cast<float>(frame) / fps;
         session.applyAnimations(time);
         session.renderer().renderFrame(session.camera(), width, height, time);
+        addCompleted();
         if (frame < warmup) continue;
-        for (const gl::PassTime& t : session.renderer().timer().times()) {
-            if (!r.passes.count(t.name)) r.order.push_back(t.name);
-            r.passes[t.name].samples.push_back(t.milliseconds);
-        }
-        r.total.samples.push_back(session.renderer().timer().total());
         for (const auto& [name, value] : session.renderer().technique().frameStats())
             r.stats[name].samples.push_back(value);
     }
+    timer.resolve(true);
+    addCompleted();
     return r;
 }
 
@@ -101,9 +116,9 @@ std::string jsonOf(const BenchResult& r)
 int runBench(const std::vector<std::string>& args)
 {
     OptionParser parser("vplgi bench",
-                        "Times every pass of a technique over frames (glFinish + wall clock on llvmpipe, timer\n"
-                        "queries on GPUs) and prints median/min/max per pass as markdown and JSON. --against runs\n"
-                        "a second technique in the same process and prints per-pass ratios.");
+                        "Times every pass of a technique over frames (glFinish + wall clock on llvmpipe, GPU\n"
+                        "timestamp queries on GPUs) and prints median/min/max per pass as markdown and JSON.\n"
+                        "--against runs a second technique in the same process and prints per-pass ratios.");
     parser.value("scene", "S", "built-in scene, scene file (.json) or .gltf/.glb");
     parser.value("technique", "T", "technique to time", "direct");
     parser.value("against", "T2", "second technique, timed in the same run; ratios T2 / T");
@@ -140,6 +155,10 @@ int runBench(const std::vector<std::string>& args)
     context = gl::createHeadlessContext();
     std::printf("scene %s, %dx%d, %s\n\n", sessions.front()->scene().source.c_str(), width, height,
                 context->description().c_str());
+    // Said only on GPUs, so that llvmpipe output is as it was (glFinish + wall clock, no lag).
+    if (gl::PassTimer::defaultMode() == gl::PassTimer::Mode::TimestampQueries)
+        std::printf("timing: GPU timestamp queries, read 1-3 frames late (each sample is attributed to the frame "
+                    "that issued it)\n\n");
     std::vector<BenchResult> results;
     for (auto& session : sessions) {
         session->createRenderer();

@@ -1,4 +1,5 @@
 // `vplgi render`: headless EGL rendering to PNG (tone-mapped display image) or EXR (linear).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -51,11 +52,14 @@ int runRender(const std::vector<std::string>& args)
         session.renderer().renderFrame(session.camera(), width, height, static_cast<float>(frame) / fps);
     }
     if (!quiet) {
+        gl::PassTimer& timer = session.renderer().timer();
+        timer.resolve(true); // GPU timestamps lag a few frames; waiting here makes them the last frame's
         std::printf("timings (last frame, %s):\n",
-                    session.renderer().timer().mode() == gl::PassTimer::Mode::TimerQuery ? "GPU timer queries"
-                                                                                        : "glFinish + wall clock");
-        for (const gl::PassTime& t : session.renderer().timer().times())
-            std::printf("  %-16s %9.2f ms\n", t.name.c_str(), t.milliseconds);
+                    timer.mode() == gl::PassTimer::Mode::TimestampQueries ? "GPU timestamp queries"
+                                                                          : "glFinish + wall clock");
+        for (const gl::PassTime& t : timer.times()) // nested scopes indented under their parent
+            std::printf("  %*s%-*s %9.2f ms\n", 2 * t.depth, "", std::max(1, 16 - 2 * t.depth), t.name.c_str(),
+                        t.milliseconds);
     }
     if (defaultOut && !outDir.empty()) std::filesystem::create_directories(outDir);
     if (isFloatImagePath(out)) writeImage(out, session.renderer().readRadiance());

@@ -24,7 +24,7 @@ Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const Re
       mShadows(shaders), mGBuffer(shaders), mDirect(shaders, "direct light", "passes/direct.frag", {GL_RGBA32F}),
       mToneMap(shaders, "tone map", "passes/tonemap.frag", {GL_RGBA8, GL_RGBA32F}),
       mFrameUniforms("frame uniforms", sizeof(shared::FrameUniforms)),
-      mTimer(gl::isSoftwareRenderer() ? gl::PassTimer::Mode::FinishAndWallClock : gl::PassTimer::Mode::TimerQuery)
+      mTimer(gl::PassTimer::defaultMode())
 {
     mTechnique->setScene(SceneContext{mScene, mGpuScene, mShaders});
 }
@@ -115,6 +115,7 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
         mToneMap.render(width, height);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    mTimer.endFrame();
     ++mFrameIndex;
     gl::checkDebugMessages();
 }

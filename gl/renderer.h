@@ -48,7 +48,9 @@ public:
     ImageRGBA32F readDirect() const;    // direct only (incl. emission), linear, rows top to bottom
     const gl::Texture& displayTexture() const { return mToneMap.target(0); }
 
+    // Per-pass times; with GPU timestamp queries they lag the rendered frame (see gl/api/timer.h).
     const gl::PassTimer& timer() const { return mTimer; }
+    gl::PassTimer& timer() { return mTimer; }
     // Shadow cube maps re-rendered in the last frame that rebuilt shadows (moved emitters only).
     int lastRenderedShadowCubes() const { return mShadows.lastRenderedCubes(); }
     const DirectLightSet& lights() const { return mLights; }
