@@ -809,6 +809,8 @@ TEST_CASE("smcir VPLs see the untextured scene: mean material albedos, as sectio
 TEST_CASE("smcir clamping: G_max = I / (clampScale D)^2 relaxes as I grows", "[smcir]")
 {
     SMCIRParams params;
+    CHECK(params.clampScale == 2.0f); // the measured default (core/smcir_sampler.h)
+    params.clampScale = 1.0f;
     CHECK(computeClampGeometry(params, 2.0f) == Approx(2048.0 / 4.0).epsilon(1e-6)); // d = 2/sqrt(2048)
     params.vplCount = 8192;
     CHECK(computeClampGeometry(params, 2.0f) == Approx(8192.0 / 4.0).epsilon(1e-6));
