@@ -54,9 +54,13 @@ Session::Session(const SessionOptions& options) : mDescription(loadSceneSpec(opt
 
 void Session::visitAll(ParamVisitor& visitor)
 {
+    // Before createRenderer() the fields live here; afterwards only in the renderer (one live set).
+    if (mRenderer) {
+        mRenderer->visitParams(visitor);
+        return;
+    }
     mParams.visitParams(visitor);
     if (mTechnique) mTechnique->visitParams(visitor);
-    else if (mRenderer) mRenderer->technique().visitParams(visitor);
 }
 
 void Session::createRenderer()

@@ -61,7 +61,7 @@ private:
     std::string mTechniqueName;
     std::string mCameraName;
     Camera mCamera;
-    RendererParams mParams;
+    RendererParams mParams;                // handed to the renderer in createRenderer(), then unused
     std::unique_ptr<Technique> mTechnique; // handed to the renderer in createRenderer()
     std::unique_ptr<gl::ShaderLoader> mShaders;
     std::unique_ptr<Renderer> mRenderer;

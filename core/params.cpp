@@ -58,6 +58,7 @@ void ParamSetter::field(const std::string& key, float& value, float min, float m
     if (const std::string* text = find(key)) {
         double v = parseNumber(key, *text);
         require(v >= min && v <= max, "parameter " + key + " = " + *text + " is outside " + rangeText(min, max));
+        if (value != static_cast<float>(v)) mChanged.insert(key);
         value = static_cast<float>(v);
     }
 }
@@ -68,6 +69,7 @@ void ParamSetter::field(const std::string& key, int& value, int min, int max, co
         double v = parseNumber(key, *text);
         require(v == std::floor(v), "parameter " + key + ": \"" + *text + "\" is not an integer");
         require(v >= min && v <= max, "parameter " + key + " = " + *text + " is outside " + rangeText(min, max));
+        if (value != static_cast<int>(v)) mChanged.insert(key);
         value = static_cast<int>(v);
     }
 }
@@ -75,9 +77,11 @@ void ParamSetter::field(const std::string& key, int& value, int min, int max, co
 void ParamSetter::field(const std::string& key, bool& value, const char*)
 {
     if (const std::string* text = find(key)) {
+        const bool before = value;
         if (*text == "1" || *text == "true" || *text == "on") value = true;
         else if (*text == "0" || *text == "false" || *text == "off") value = false;
         else throw Error("parameter " + key + ": \"" + *text + "\" is not a boolean (true/false)");
+        if (value != before) mChanged.insert(key);
     }
 }
 
@@ -87,7 +91,24 @@ void ParamSetter::field(const std::string& key, std::uint32_t& value, const char
         double v = parseNumber(key, *text);
         require(v == std::floor(v) && v >= 0.0 && v <= 4294967295.0,
                 "parameter " + key + ": \"" + *text + "\" is not an unsigned 32-bit integer");
+        if (value != static_cast<std::uint32_t>(v)) mChanged.insert(key);
         value = static_cast<std::uint32_t>(v);
+    }
+}
+
+void ParamSetter::choice(const std::string& key, int& index, const std::vector<std::string>& names, const char*)
+{
+    if (const std::string* text = find(key)) {
+        std::string known;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            if (*text == names[i] || *text == std::to_string(i)) {
+                if (index != static_cast<int>(i)) mChanged.insert(key);
+                index = static_cast<int>(i);
+                return;
+            }
+            known += (known.empty() ? "" : ", ") + names[i];
+        }
+        throw Error("parameter " + key + ": \"" + *text + "\" is not one of " + known);
     }
 }
 
@@ -135,6 +156,15 @@ void ParamDumper::field(const std::string& key, std::uint32_t& value, const char
 {
     mValues[key] = valueText(value);
     mLines.push_back(key + " = " + mValues[key] + "  # " + doc);
+}
+
+void ParamDumper::choice(const std::string& key, int& index, const std::vector<std::string>& names, const char* doc)
+{
+    mValues[key] = index >= 0 && index < static_cast<int>(names.size()) ? names[static_cast<std::size_t>(index)]
+                                                                         : valueText(index);
+    std::string options;
+    for (const std::string& n : names) options += (options.empty() ? "" : "|") + n;
+    mLines.push_back(key + " = " + mValues[key] + "  # " + doc + " (" + options + ")");
 }
 
 std::string ParamDumper::text() const

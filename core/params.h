@@ -19,6 +19,12 @@ public:
     virtual void field(const std::string& key, int& value, int min, int max, const char* doc) = 0;
     virtual void field(const std::string& key, bool& value, const char* doc) = 0;
     virtual void field(const std::string& key, std::uint32_t& value, const char* doc) = 0;
+    // A field with named values (an enum as an index into `names`). Visitors that do not care about
+    // the names see an int field in [0, names.size() - 1].
+    virtual void choice(const std::string& key, int& index, const std::vector<std::string>& names, const char* doc)
+    {
+        field(key, index, 0, static_cast<int>(names.size()) - 1, doc);
+    }
 };
 
 // Applies "key=value" settings to the fields it visits. Values out of range or unparsable throw
@@ -30,14 +36,19 @@ public:
     void field(const std::string& key, int& value, int min, int max, const char* doc) override;
     void field(const std::string& key, bool& value, const char* doc) override;
     void field(const std::string& key, std::uint32_t& value, const char* doc) override;
+    // Accepts a name of `names` (or its index).
+    void choice(const std::string& key, int& index, const std::vector<std::string>& names, const char* doc) override;
     void finish() const;
     // Keys that matched a visited field (for callers that apply one setting list to several owners).
     const std::set<std::string>& usedKeys() const { return mUsed; }
+    // Keys whose field got a different value (what a live change must apply or rebuild).
+    const std::set<std::string>& changedKeys() const { return mChanged; }
 
 private:
     const std::string* find(const std::string& key);
     Settings mSettings; // later entries win
     std::set<std::string> mUsed;
+    std::set<std::string> mChanged;
     std::vector<std::string> mKnown;
 };
 
@@ -48,6 +59,7 @@ public:
     void field(const std::string& key, int& value, int min, int max, const char* doc) override;
     void field(const std::string& key, bool& value, const char* doc) override;
     void field(const std::string& key, std::uint32_t& value, const char* doc) override;
+    void choice(const std::string& key, int& index, const std::vector<std::string>& names, const char* doc) override;
     std::string text() const;                              // one line per field
     const std::map<std::string, std::string>& values() const { return mValues; }
 

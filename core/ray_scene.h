@@ -69,7 +69,7 @@ public:
 
     // While set, every ray cast is also recorded (measurements only: set it when no other thread
     // casts rays that should not be counted; nullptr stops).
-    void setRecorder(RayRecorder* recorder) { mRecorder.store(recorder, std::memory_order_relaxed); }
+    void setRecorder(RayRecorder* recorder) const { mRecorder.store(recorder, std::memory_order_relaxed); }
 
     const Scene& scene() const { return mScene; }
     // Diagonal of the world bounds [m]: the scale for ray offsets (computed once).
@@ -80,7 +80,7 @@ private:
     const Scene& mScene;
     float mSceneScale = 1.0f;
     std::unique_ptr<Impl> mImpl;
-    std::atomic<RayRecorder*> mRecorder{nullptr};
+    mutable std::atomic<RayRecorder*> mRecorder{nullptr}; // measurement state, not scene state
 };
 
 } // namespace vplgi

@@ -619,7 +619,22 @@ void SMCIRSampler::step(const Camera& camera, float aspect)
     step(FrameSnapshot::of(mScene, camera, aspect));
 }
 
-void SMCIRSampler::initialize(const FrameSnapshot& snapshot, const std::function<void(int, int)>& progress)
+StatList SMCIRSampler::stats() const
+{
+    const SMCIRStageTimes& t = mTimes;
+    return {{"sampler: camera rays ms", t.cameraRays},
+            {"sampler: candidate sampling ms", t.candidateSampling},
+            {"sampler: candidate resampling ms", t.candidateResampling},
+            {"sampler: indirect visibility ms", t.indirectVisibility},
+            {"sampler: radiosity ms", t.radiosity},
+            {"sampler: kNN ms", t.knn},
+            {"sampler: selection ms", t.selection},
+            {"sampler: total ms", t.total},
+            {"sampler: rays", static_cast<double>(t.rays)},
+            {"sampler: radiance estimates", static_cast<double>(t.radianceEstimates)}};
+}
+
+void SMCIRSampler::initialize(const FrameSnapshot& snapshot, const Progress& progress)
 {
     const Camera& camera = snapshot.camera;
     const float aspect = snapshot.aspect;

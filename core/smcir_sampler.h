@@ -151,6 +151,7 @@
 
 #include "frame_snapshot.h"
 #include "ray_scene.h"
+#include "vpl_pipeline.h"
 #include "scene.h"
 #include "surface.h"
 #include "vpl.h"
@@ -227,7 +228,7 @@ struct SMCIRStageTimes {
     int radianceEstimates = 0;      // radiance estimates made (candidates + stale VPLs)
 };
 
-class SMCIRSampler {
+class SMCIRSampler final : public VPLSampler {
 public:
     // Keeps references to scene and rays (rays built from scene); both must outlive the sampler.
     // Throws Error for parameters out of range.
@@ -241,17 +242,19 @@ public:
     // after each warm-up frame. Afterwards vpls().changed lists every slot, and lastTimes() describes
     // the last warm-up frame (the initialization itself when there is none) with `moved` = all slots.
     // May be called again to start over (same seed and snapshot: the same set).
-    void initialize(const FrameSnapshot& snapshot, const std::function<void(int done, int total)>& progress = {});
+    void initialize(const FrameSnapshot& snapshot, const Progress& progress = {}) override;
     // One frame, Alg. 1 lines 3-19: at most maxMoves slots change. Requires initialize(). Reads only
     // the snapshot and the scene's static parts. A VPL's cached radiance (3.2.3) is re-estimated,
     // with its own seed, exactly when the snapshot's lights differ from those it was computed for.
-    void step(const FrameSnapshot& snapshot);
+    void step(const FrameSnapshot& snapshot) override;
     // Conveniences for single-threaded callers: a snapshot of the scene's lights, taken now.
     void initialize(const Camera& camera, float aspect = 16.0f / 9.0f,
                     const std::function<void(int done, int total)>& progress = {});
     void step(const Camera& camera, float aspect = 16.0f / 9.0f);
 
-    const VPLSet& vpls() const { return mSet; }
+    const VPLSet& vpls() const override { return mSet; }
+    // lastTimes() in SMCIR Table 2's columns, for `vplgi bench`.
+    StatList stats() const override;
     const SMCIRStageTimes& lastTimes() const { return mTimes; }
     const SMCIRParams& params() const { return mParams; }
     // Frames run so far (initialization is frame 0; each step adds one).

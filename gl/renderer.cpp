@@ -12,6 +12,8 @@ namespace vplgi {
 void RendererParams::visitParams(ParamVisitor& v)
 {
     v.field("renderer.exposure", exposure, 0.0f, 1e6f, "radiance scale before Reinhard tone mapping");
+    v.choice("renderer.display", display, {"final", "direct", "indirect", "albedo", "normal", "depth"},
+             "what the display image shows (PNG output, window); EXR output stays the final radiance");
     v.field("lights.emitterSamples", lights.emitterSamples, 1, 4096,
             "cosine point samples representing all emissive triangles");
     v.field("lights.seed", lights.seed, "seed of the emissive-triangle sample placement");
@@ -20,13 +22,34 @@ void RendererParams::visitParams(ParamVisitor& v)
 
 Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const RendererParams& params,
                    std::unique_ptr<Technique> technique)
-    : mShaders(shaders), mScene(scene), mParams(params), mGpuScene(scene), mTechnique(std::move(technique)),
-      mShadows(shaders), mGBuffer(shaders), mDirect(shaders, "direct light", "passes/direct.frag", {GL_RGBA32F}),
-      mToneMap(shaders, "tone map", "passes/tonemap.frag", {GL_RGBA8, GL_RGBA32F}),
+    : mShaders(shaders), mScene(scene), mParams(params), mGpuScene(scene), mRays(scene), mTechnique(std::move(technique)),
+      mShadows(shaders), mGBuffer(shaders), mDirect(shaders, "direct light", "passes/direct.frag"),
+      mToneMap(shaders, "tone map", "passes/tonemap.frag"),
+      mDirectTarget("direct light", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
+      mIndirectTarget("indirect", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
+      mOutput("output", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
       mFrameUniforms("frame uniforms", sizeof(shared::FrameUniforms)),
       mTimer(gl::PassTimer::defaultMode())
 {
-    mTechnique->setScene(SceneContext{mScene, mGpuScene, mShaders});
+    mTechnique->setScene(SceneContext{mScene, mGpuScene, mShaders, mRays, terminalProgressBar()});
+}
+
+void Renderer::visitParams(ParamVisitor& visitor)
+{
+    mParams.visitParams(visitor);
+    mTechnique->visitParams(visitor);
+}
+
+std::set<std::string> Renderer::applySettings(const Settings& settings)
+{
+    ParamSetter setter(settings);
+    visitParams(setter);
+    setter.finish();
+    const std::set<std::string>& changed = setter.changedKeys();
+    for (const std::string& key : changed)
+        if (key.rfind("shadow.", 0) == 0 || key.rfind("lights.", 0) == 0) mLightsChanged = true;
+    mTechnique->applyParamChanges(changed);
+    return changed;
 }
 
 void Renderer::reloadShaders()
@@ -55,23 +78,6 @@ void Renderer::updateFrameUniforms(const Camera& camera, int width, int height)
     glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, mFrameUniforms.id());
 }
 
-void Renderer::prepareIndirectTarget(int width, int height)
-{
-    if (!mIndirect || mIndirect.width() != width || mIndirect.height() != height) {
-        gl::TextureDesc desc;
-        desc.format = GL_RGBA32F;
-        desc.width = width;
-        desc.height = height;
-        mIndirect = gl::Texture("indirect radiance", desc);
-        mIndirectFramebuffer = gl::Framebuffer("indirect");
-        mIndirectFramebuffer.attach(GL_COLOR_ATTACHMENT0, mIndirect);
-        mIndirectFramebuffer.setDrawBuffers(1);
-        mIndirectFramebuffer.checkComplete();
-    }
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearNamedFramebufferfv(mIndirectFramebuffer.id(), GL_COLOR, 0, zero);
-}
-
 void Renderer::renderFrame(const Camera& camera, int width, int height, float time)
 {
     require(width > 0 && height > 0, "render size must be positive");
@@ -90,6 +96,8 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingDirectionalEmitters, mDirectionalEmitters.id());
 
     FrameContext frame{camera, width, height, time, mFrameIndex, lightsChanged, mLights, mTimer};
+    frame.viewFromWorld = mFrame.viewFromWorld;
+    frame.clipFromWorld = mFrame.clipFromWorld;
     mTechnique->update(frame);
     {
         gl::PassTimer::Scope scope(mTimer, "gbuffer");
@@ -99,20 +107,25 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
         gl::PassTimer::Scope scope(mTimer, "direct light");
         mGBuffer.gbuffer().bindForReading();
         mShadows.bindForReading();
-        mDirect.render(width, height);
+        mDirectTarget.resize(width, height);
+        mDirect.render(mDirectTarget);
     }
-    prepareIndirectTarget(width, height);
+    mIndirectTarget.resize(width, height);
+    mIndirectTarget.clear();
     {
         gl::PassTimer::Scope scope(mTimer, std::string(mTechnique->name()));
-        mTechnique->render(frame, mGBuffer.gbuffer(), IndirectTarget{mIndirect, mIndirectFramebuffer});
+        mTechnique->render(frame, mGBuffer.gbuffer(), IndirectTarget{mIndirectTarget});
     }
     {
         gl::PassTimer::Scope scope(mTimer, "tone map");
-        glBindTextureUnit(shared::kUnitDirect, mDirect.target(0).id());
-        glBindTextureUnit(shared::kUnitIndirect, mIndirect.id());
+        glBindTextureUnit(shared::kUnitDirect, mDirectTarget.color(0).id());
+        glBindTextureUnit(shared::kUnitIndirect, mIndirectTarget.color(0).id());
         glBindSampler(shared::kUnitDirect, 0);
         glBindSampler(shared::kUnitIndirect, 0);
-        mToneMap.render(width, height);
+        mGBuffer.gbuffer().bindForReading(); // the albedo, normal and depth views
+        glProgramUniform1i(mToneMap.program().id(), shared::kLocationDisplayView, mParams.display);
+        mOutput.resize(width, height);
+        mToneMap.render(mOutput);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     mTimer.endFrame();
@@ -135,17 +148,17 @@ ImageRGBA32F Renderer::readLinear(const gl::Texture& texture) const
 
 ImageRGBA32F Renderer::readRadiance() const
 {
-    return readLinear(mToneMap.target(1));
+    return readLinear(mOutput.color(1));
 }
 
 ImageRGBA32F Renderer::readDirect() const
 {
-    return readLinear(mDirect.target(0));
+    return readLinear(mDirectTarget.color(0));
 }
 
 ImageRGBA8 Renderer::readDisplay() const
 {
-    const gl::Texture& texture = mToneMap.target(0);
+    const gl::Texture& texture = mOutput.color(0);
     ImageRGBA8 image;
     image.width = texture.width();
     image.height = texture.height();

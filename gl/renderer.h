@@ -7,11 +7,13 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <string>
 
 #include "api/timer.h"
 #include "core/direct_lights.h"
 #include "core/image_io.h"
+#include "core/params.h"
 #include "core/scene.h"
 #include "glsl/shared/bindings.h"
 #include "gpu_scene.h"
@@ -26,6 +28,7 @@ class ParamVisitor;
 
 struct RendererParams {
     float exposure = 1.0f;           // radiance scale before Reinhard tone mapping
+    int display = 0;                 // what the display shows: shared::kDisplay* (renderer.display)
     ShadowParams shadow;             // shadow.*
     DirectLightParams lights;        // lights.emitterSamples, lights.seed
     void visitParams(ParamVisitor& visitor);
@@ -46,7 +49,7 @@ public:
     ImageRGBA8 readDisplay() const;     // tone-mapped sRGB bytes, rows top to bottom
     ImageRGBA32F readRadiance() const;  // direct + indirect, linear, rows top to bottom
     ImageRGBA32F readDirect() const;    // direct only (incl. emission), linear, rows top to bottom
-    const gl::Texture& displayTexture() const { return mToneMap.target(0); }
+    const gl::Texture& displayTexture() const { return mOutput.color(0); }
 
     // Per-pass times; with GPU timestamp queries they lag the rendered frame (see gl/api/timer.h).
     const gl::PassTimer& timer() const { return mTimer; }
@@ -56,23 +59,33 @@ public:
     const DirectLightSet& lights() const { return mLights; }
     Technique& technique() { return *mTechnique; }
     const RendererParams& params() const { return mParams; }
+    // The one live parameter set: the renderer's fields and its technique's (Session, CLI, scene
+    // file, reports and the viewer all read and write these through visitParams).
+    void visitParams(ParamVisitor& visitor);
+    // Applies `settings` between frames (unknown keys and bad values throw before anything
+    // changes... of the failing key; earlier keys of the list stay applied). Cheap changes take effect
+    // next frame; structural ones rebuild what they must (shadow.* and lights.* rebuild the emitters
+    // and shadow maps, the technique rebuilds its own state: Technique::applyParamChanges).
+    // Returns the keys whose value changed.
+    std::set<std::string> applySettings(const Settings& settings);
 
 private:
     void updateFrameUniforms(const Camera& camera, int width, int height);
-    void prepareIndirectTarget(int width, int height);
     ImageRGBA32F readLinear(const gl::Texture& texture) const;
 
     const gl::ShaderLoader& mShaders;
     const Scene& mScene;
     RendererParams mParams;
     GpuScene mGpuScene;
+    SharedRayScene mRays; // before the technique: it outlives the technique's CPU half
     std::unique_ptr<Technique> mTechnique;
     ShadowPass mShadows;
     GBufferPass mGBuffer;
     FullscreenPass mDirect;
     FullscreenPass mToneMap;
-    gl::Texture mIndirect;
-    gl::Framebuffer mIndirectFramebuffer;
+    gl::RenderTarget mDirectTarget;   // direct light + emission, RGBA32F
+    gl::RenderTarget mIndirectTarget; // the technique's indirect light, RGBA32F
+    gl::RenderTarget mOutput;         // colour 0 display RGBA8 (sRGB bytes), colour 1 radiance RGBA32F
     gl::Buffer mFrameUniforms;
     gl::Buffer mPointEmitters;
     gl::Buffer mDirectionalEmitters;

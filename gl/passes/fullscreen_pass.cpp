@@ -1,10 +1,12 @@
 #include "fullscreen_pass.h"
 
+#include "core/error.h"
+
 namespace vplgi {
 
 FullscreenPass::FullscreenPass(const gl::ShaderLoader& shaders, std::string name, std::string fragmentFile,
-                               std::vector<GLenum> targets)
-    : mName(std::move(name)), mFragmentFile(std::move(fragmentFile)), mFormats(std::move(targets)),
+                               std::vector<std::string> defines)
+    : mName(std::move(name)), mFragmentFile(std::move(fragmentFile)), mDefines(std::move(defines)),
       mEmptyVertexArray(mName + " (no vertices)")
 {
     reloadShaders(shaders);
@@ -12,34 +14,29 @@ FullscreenPass::FullscreenPass(const gl::ShaderLoader& shaders, std::string name
 
 void FullscreenPass::reloadShaders(const gl::ShaderLoader& shaders)
 {
-    mProgram = shaders.load(mName, {{GL_VERTEX_SHADER, "lib/fullscreen.vert"}, {GL_FRAGMENT_SHADER, mFragmentFile}});
+    mProgram = shaders.load(mName, {{GL_VERTEX_SHADER, "lib/fullscreen.vert"}, {GL_FRAGMENT_SHADER, mFragmentFile}},
+                            mDefines);
 }
 
-void FullscreenPass::render(int width, int height)
+void FullscreenPass::render(const gl::RenderTarget& target, const FullscreenDraw& draw) const
 {
-    if (width != mWidth || height != mHeight) {
-        mTargets.clear();
-        mFramebuffer = gl::Framebuffer(mName);
-        for (std::size_t i = 0; i < mFormats.size(); ++i) {
-            gl::TextureDesc desc;
-            desc.format = mFormats[i];
-            desc.width = width;
-            desc.height = height;
-            mTargets.emplace_back(mName + " target " + std::to_string(i), desc);
-            mFramebuffer.attach(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i), mTargets.back());
-        }
-        mFramebuffer.setDrawBuffers(static_cast<int>(mFormats.size()));
-        mFramebuffer.checkComplete();
-        mWidth = width;
-        mHeight = height;
+    require(static_cast<bool>(target), "fullscreen pass " + mName + ": target " + target.name() + " has no storage");
+    require(draw.layer >= 0 && draw.layer < target.layers(), "fullscreen pass " + mName + ": layer out of range");
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer().id());
+    if (draw.viewport.z > 0) glViewport(draw.viewport.x, draw.viewport.y, draw.viewport.z, draw.viewport.w);
+    else glViewport(0, 0, target.width(), target.height());
+    if (draw.blend == FullscreenDraw::Blend::Add) {
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        glBlendEquation(GL_FUNC_ADD);
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, mFramebuffer.id());
-    glViewport(0, 0, width, height);
     glUseProgram(mProgram.id());
+    glProgramUniform1i(mProgram.id(), 0, draw.layer); // lib/fullscreen.vert: layout(location = 0) uLayer
     glBindVertexArray(mEmptyVertexArray.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
     glUseProgram(0);
+    if (draw.blend != FullscreenDraw::Blend::None) glDisable(GL_BLEND);
 }
 
 } // namespace vplgi

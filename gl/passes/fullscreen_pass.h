@@ -1,35 +1,42 @@
-// A fragment-shader pass over the whole viewport writing into its own colour targets.
-// Used by the direct-light and tone-map passes (and later filters).
+// A fragment-shader pass over a viewport of a target its caller hands it: the direct-light and
+// tone-map passes, and the techniques' screen-space passes (filters, combines). The pass owns only
+// its program; what it writes belongs to the caller (gl::RenderTarget).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
+#include "../api/render_target.h"
 #include "../api/shader_loader.h"
 
 namespace vplgi {
 
+struct FullscreenDraw {
+    enum class Blend { None, Add };       // Add: result += output (e.g. accumulating indirect light)
+    glm::ivec4 viewport{0, 0, 0, 0};      // x, y, width, height; zero width = the whole target
+    int layer = 0;                        // layer of a layered target (gl_Layer from the vertex shader)
+    Blend blend = Blend::None;
+};
+
 class FullscreenPass {
 public:
-    // `targets`: the sized formats of the colour attachments, in location order.
+    // `defines` ("NAME" or "NAME VALUE") are injected after #version (gl::ShaderLoader).
     FullscreenPass(const gl::ShaderLoader& shaders, std::string name, std::string fragmentFile,
-                   std::vector<GLenum> targets);
+                   std::vector<std::string> defines = {});
     void reloadShaders(const gl::ShaderLoader& shaders);
-    // Resizes the targets when needed, then draws one triangle with the program bound.
-    void render(int width, int height);
-    const gl::Texture& target(int index) const { return mTargets[index]; }
+    // Draws one triangle over the viewport of `target` with the program bound. The caller binds
+    // inputs (textures, buffers) beforehand.
+    void render(const gl::RenderTarget& target, const FullscreenDraw& draw = {}) const;
     const gl::Program& program() const { return mProgram; }
 
 private:
     std::string mName;
     std::string mFragmentFile;
-    std::vector<GLenum> mFormats;
+    std::vector<std::string> mDefines;
     gl::Program mProgram;
-    std::vector<gl::Texture> mTargets;
-    gl::Framebuffer mFramebuffer;
     gl::VertexArray mEmptyVertexArray;
-    int mWidth = 0;
-    int mHeight = 0;
 };
 
 } // namespace vplgi

@@ -16,59 +16,33 @@ gl::Program loadProgram(const gl::ShaderLoader& shaders)
 void GBuffer::bindForReading() const
 {
     using namespace shared;
-    glBindTextureUnit(kUnitGBufferPosition, position.id());
-    glBindTextureUnit(kUnitGBufferNormal, normal.id());
-    glBindTextureUnit(kUnitGBufferBaseColor, baseColor.id());
-    glBindTextureUnit(kUnitGBufferEmission, emission.id());
+    glBindTextureUnit(kUnitGBufferPosition, position().id());
+    glBindTextureUnit(kUnitGBufferNormal, normal().id());
+    glBindTextureUnit(kUnitGBufferBaseColor, baseColor().id());
+    glBindTextureUnit(kUnitGBufferEmission, emission().id());
     for (int unit : {kUnitGBufferPosition, kUnitGBufferNormal, kUnitGBufferBaseColor, kUnitGBufferEmission})
         glBindSampler(static_cast<GLuint>(unit), 0);
 }
 
-GBufferPass::GBufferPass(const gl::ShaderLoader& shaders) : mProgram(loadProgram(shaders)) {}
+GBufferPass::GBufferPass(const gl::ShaderLoader& shaders) : mProgram(loadProgram(shaders))
+{
+    gl::RenderTargetDesc desc;
+    desc.colorFormats = {GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F};
+    desc.colorNames = {"position", "normal", "base colour", "emission"};
+    desc.depthFormat = GL_DEPTH_COMPONENT32F;
+    mGBuffer.target = gl::RenderTarget("gbuffer", desc);
+}
 
 void GBufferPass::reloadShaders(const gl::ShaderLoader& shaders)
 {
     mProgram = loadProgram(shaders);
 }
 
-void GBufferPass::resize(int width, int height)
-{
-    if (mGBuffer.width == width && mGBuffer.height == height) return;
-    auto target = [&](const char* name, GLenum format) {
-        gl::TextureDesc desc;
-        desc.format = format;
-        desc.width = width;
-        desc.height = height;
-        return gl::Texture(std::string("gbuffer ") + name, desc);
-    };
-    mGBuffer.position = target("position", GL_RGBA32F);
-    mGBuffer.normal = target("normal", GL_RGBA16F);
-    mGBuffer.baseColor = target("base colour", GL_RGBA16F);
-    mGBuffer.emission = target("emission", GL_RGBA16F);
-    mGBuffer.depth = target("depth", GL_DEPTH_COMPONENT32F);
-    mGBuffer.framebuffer = gl::Framebuffer("gbuffer");
-    const gl::Framebuffer& fb = mGBuffer.framebuffer;
-    fb.attach(GL_COLOR_ATTACHMENT0, mGBuffer.position);
-    fb.attach(GL_COLOR_ATTACHMENT1, mGBuffer.normal);
-    fb.attach(GL_COLOR_ATTACHMENT2, mGBuffer.baseColor);
-    fb.attach(GL_COLOR_ATTACHMENT3, mGBuffer.emission);
-    fb.attach(GL_DEPTH_ATTACHMENT, mGBuffer.depth);
-    fb.setDrawBuffers(4);
-    fb.checkComplete();
-    mGBuffer.width = width;
-    mGBuffer.height = height;
-}
-
 void GBufferPass::render(const GpuScene& scene, int width, int height)
 {
-    resize(width, height);
-    const GLuint fb = mGBuffer.framebuffer.id();
-    glBindFramebuffer(GL_FRAMEBUFFER, fb);
-    glViewport(0, 0, width, height);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(fb, GL_COLOR, i, zero);
-    const float far = 1.0f;
-    glClearNamedFramebufferfv(fb, GL_DEPTH, 0, &far);
+    mGBuffer.target.resize(width, height);
+    mGBuffer.target.bindForDrawing();
+    mGBuffer.target.clear(glm::vec4(0.0f), 1.0f);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glUseProgram(mProgram.id());

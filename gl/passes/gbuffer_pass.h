@@ -1,20 +1,26 @@
 // Pass 1: the deferred G-buffer. Targets follow the output size; every later pass reads them.
 #pragma once
 
+#include "../api/render_target.h"
 #include "../api/shader_loader.h"
 #include "../gpu_scene.h"
 
 namespace vplgi {
 
 struct GBuffer {
-    gl::Texture position;  // RGBA32F: world position [m], w = 1 where geometry was hit
-    gl::Texture normal;    // RGBA16F: shading normal, w = perceptual roughness
-    gl::Texture baseColor; // RGBA16F: base colour, w = metallic
-    gl::Texture emission;  // RGBA16F: emitted radiance, w = specular factor
-    gl::Texture depth;     // DEPTH32F
-    gl::Framebuffer framebuffer;
-    int width = 0;
-    int height = 0;
+    // colour 0 position RGBA32F: world position [m], w = 1 where geometry was hit
+    // colour 1 normal RGBA16F: shading normal, w = perceptual roughness
+    // colour 2 base colour RGBA16F: base colour, w = metallic
+    // colour 3 emission RGBA16F: emitted radiance, w = specular factor; depth DEPTH32F
+    gl::RenderTarget target;
+
+    const gl::Texture& position() const { return target.color(0); }
+    const gl::Texture& normal() const { return target.color(1); }
+    const gl::Texture& baseColor() const { return target.color(2); }
+    const gl::Texture& emission() const { return target.color(3); }
+    const gl::Texture& depth() const { return target.depth(); }
+    int width() const { return target.width(); }
+    int height() const { return target.height(); }
 
     // Binds the four colour targets to the kUnitGBuffer* units.
     void bindForReading() const;
@@ -28,7 +34,6 @@ public:
     const GBuffer& gbuffer() const { return mGBuffer; }
 
 private:
-    void resize(int width, int height);
     gl::Program mProgram;
     GBuffer mGBuffer;
 };

@@ -11,59 +11,40 @@ namespace vplgi {
 
 SMCIRRayTracedTechnique::SMCIRRayTracedTechnique() = default;
 
-SMCIRRayTracedTechnique::~SMCIRRayTracedTechnique()
-{
-    mWorker.reset(); // joins before the sampler and the Embree scene go away
-}
+SMCIRRayTracedTechnique::~SMCIRRayTracedTechnique() = default; // the pipeline joins its worker
 
 void SMCIRRayTracedTechnique::visitParams(ParamVisitor& v)
 {
     mParams.visitParams(v);
     v.field("smcir.synchronous", mSynchronous,
-            "run the sampler step on the render thread (no overlap with the GPU frame; for clean timings)");
+            "run the sampler step on the render thread (no overlap with the GPU frame; for clean timings and "
+            "the ray replay)");
 }
 
 void SMCIRRayTracedTechnique::setScene(const SceneContext& context)
 {
-    mWorker.reset();
     mScene = &context.scene;
-    mRays = std::make_unique<RayScene>(context.scene);
-    mSampler = std::make_unique<SMCIRSampler>(context.scene, *mRays, mParams);
-    mInitialized = false;
+    mRays = &context.rays.get();
+    mProgress = context.progress;
+    startPipeline();
+}
+
+void SMCIRRayTracedTechnique::startPipeline()
+{
+    mPipeline.reset(); // joins a running step before its sampler goes
+    mRendered = nullptr;
+    mPipeline = std::make_unique<VPLPipeline>(std::make_unique<SMCIRSampler>(*mScene, *mRays, mParams), mRays);
 }
 
 void SMCIRRayTracedTechnique::update(const FrameContext& frame)
 {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
+    // Alg. 1 line 1 and the warm-up iterations report progress on large scenes, where they take seconds.
+    VPLSampler::Progress progress;
+    if (mProgress && mScene->triangleCount() > 50000)
+        progress = [this](int done, int total) { mProgress("smcir warm-up", done, total); };
     // Everything the sampler reads that this thread writes (camera, lights), by value.
-    FrameSnapshot snapshot = FrameSnapshot::of(*mScene, frame.camera, aspect, frame.time);
-    if (!mInitialized) {
-        // Alg. 1 line 1 and the warm-up iterations; a progress bar on large scenes, where they take seconds.
-        std::function<void(int, int)> progress;
-        if (mScene->triangleCount() > 50000)
-            progress = [](int done, int total) {
-                const int width = 30, filled = total > 0 ? done * width / total : width;
-                std::fprintf(stderr, "\rsmcir warm-up [%.*s%*s] %d/%d", filled, "##############################",
-                             width - filled, "", done, total);
-                if (done == total) std::fprintf(stderr, "\n");
-            };
-        mSampler->initialize(snapshot, progress);
-        mWorker = std::make_unique<SMCIRWorker>(*mSampler);
-        mInitialized = true;
-    } else if (mSynchronous) {
-        // Synchronous steps also measure the ray efficiency: the step's rays are recorded and
-        // replayed alone (the render thread casts nothing meanwhile, so only the sampler's are kept).
-        mRecorder.clear();
-        mRays->setRecorder(&mRecorder);
-        mSampler->step(snapshot);
-        mRays->setRecorder(nullptr);
-        mReplayMilliseconds = mRecorder.replay(*mRays) * 1e3;
-    } else {
-        mWorker->wait();
-    }
-    mRendered = mSampler->vpls();
-    mTimes = mSampler->lastTimes();
-    if (!mSynchronous) mWorker->submit(std::move(snapshot));
+    mRendered = &mPipeline->advance(FrameSnapshot::of(*mScene, frame.camera, aspect, frame.time), mSynchronous, progress);
 }
 
 void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, const IndirectTarget& target)
@@ -71,14 +52,27 @@ void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, 
     const auto start = std::chrono::steady_clock::now();
     VPLGatherParams gather;
     gather.clampGeometry = computeClampGeometry(mParams, mRays->sceneScale());
-    const ImageRGBA32F image = renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, mRendered, gather);
+    const ImageRGBA32F image = renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, *mRendered, gather);
     // GL rows run bottom to top.
     const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
     std::vector<float> flipped(image.pixels.size());
     for (int y = 0; y < frame.height; ++y)
         std::copy_n(&image.pixels[static_cast<std::size_t>(frame.height - 1 - y) * row], row, &flipped[y * row]);
-    glTextureSubImage2D(target.radiance.id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
+    glTextureSubImage2D(target.radiance().id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
     mGatherMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void SMCIRRayTracedTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
+{
+    // Read every frame, nothing to rebuild: the clamp (render) and where the step runs.
+    static const std::set<std::string> cheap = {"smcir.clampScale", "smcir.synchronous"};
+    bool structural = false;
+    for (const std::string& key : changedKeys)
+        if (key.rfind("smcir.", 0) == 0 && !cheap.count(key)) structural = true;
+    if (!structural || !mScene) return;
+    // The sampler keeps a copy of its parameters (budget-sized slots, seeds): start it over, with
+    // initialisation and warm-up at the next update().
+    startPipeline();
 }
 
 void SMCIRRayTracedTechnique::configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const
@@ -92,22 +86,14 @@ void SMCIRRayTracedTechnique::configureReference(PathTracerParams& params, const
 
 std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats() const
 {
-    // The sampler's stages in the columns of SMCIR Table 2 (measured on the worker thread, for the
-    // step whose VPL set this frame renders).
-    return {{"sampler: camera rays ms", mTimes.cameraRays},
-            {"sampler: candidate sampling ms", mTimes.candidateSampling},
-            {"sampler: candidate resampling ms", mTimes.candidateResampling},
-            {"sampler: indirect visibility ms", mTimes.indirectVisibility},
-            {"sampler: radiosity ms", mTimes.radiosity},
-            {"sampler: kNN ms", mTimes.knn},
-            {"sampler: selection ms", mTimes.selection},
-            {"sampler: total ms", mTimes.total},
-            {"sampler: rays", static_cast<double>(mTimes.rays)},
-            {"sampler: ray replay ms", mReplayMilliseconds},
-            {"sampler: radiance estimates", static_cast<double>(mTimes.radianceEstimates)},
-            {"vpls", static_cast<double>(mRendered.validCount())},
-            {"vpls changed", static_cast<double>(mRendered.changed.size())},
-            {"cpu gather ms", mGatherMilliseconds}};
+    // The sampler's stages in the columns of SMCIR Table 2, for the step whose VPL set this frame
+    // renders (measured on the worker thread, or on this one with smcir.synchronous).
+    std::vector<std::pair<std::string, double>> stats = mPipeline->stats();
+    const VPLSet& set = mPipeline->published();
+    stats.emplace_back("vpls", static_cast<double>(set.validCount()));
+    stats.emplace_back("vpls changed", static_cast<double>(set.changed.size()));
+    stats.emplace_back("cpu gather ms", mGatherMilliseconds);
+    return stats;
 }
 
 } // namespace vplgi

@@ -4,14 +4,13 @@
 // interleaving and filtering artefacts; the GPU technique `smcir` builds on the same sampler.
 //
 // Overview, per frame n:
-//   update():  wait for the worker's step n-1 -> copy its VPL set -> submit step n with a snapshot
-//              of frame n (camera, lights by value) -> worker runs meanwhile
-//   render():  gather the copied set at every pixel on the CPU, upload to the indirect target
-// So frame n shows the VPLs sampled for frame n-1 (one frame of latency; this pipelining is ours,
-// not the paper's, which runs every step on the GPU within the frame), and the result is
-// deterministic for a seed. With
-// smcir.synchronous the step runs on the render thread instead (frame n shows step n): slower, but
-// the stage times are then measured without the GPU frame competing for the same cores, and the
+//   update():  VPLPipeline::advance(snapshot n) (core/vpl_pipeline.h): the worker thread runs step n
+//              on a snapshot of frame n (camera, lights by value) while this frame renders the set of
+//              step n-1 (one frame of latency; this pipelining is ours, not the paper's, which runs
+//              every step on the GPU within the frame). Deterministic for a seed.
+//   render():  gather the published set at every pixel on the CPU, upload to the indirect target
+// With smcir.synchronous the step runs on the render thread instead (frame n shows step n): slower,
+// but the stage times are then measured without the GPU frame competing for the same cores, and the
 // step's rays are recorded and replayed alone for the ray efficiency (core/ray_scene.h RayRecorder).
 //
 // References: Hedman, Karras, Lehtinen, "Sequential Monte Carlo Instant Radiosity", TVCG 2017,
@@ -22,8 +21,8 @@
 
 #include "core/ray_scene.h"
 #include "core/smcir_sampler.h"
-#include "core/smcir_worker.h"
 #include "core/vpl_gather.h"
+#include "core/vpl_pipeline.h"
 #include "technique.h"
 
 namespace vplgi {
@@ -39,20 +38,18 @@ public:
     void visitParams(ParamVisitor& visitor) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
     void configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const override;
+    void applyParamChanges(const std::set<std::string>& changedKeys) override;
 
 private:
+    void startPipeline();
     SMCIRParams mParams;
     bool mSynchronous = false;  // step on the render thread (no overlap): uncontended stage timings
     const Scene* mScene = nullptr;
-    std::unique_ptr<RayScene> mRays;
-    std::unique_ptr<SMCIRSampler> mSampler;
-    std::unique_ptr<SMCIRWorker> mWorker;
-    VPLSet mRendered; // the set this frame renders (a copy: the worker changes the sampler's)
-    SMCIRStageTimes mTimes{};
+    const RayScene* mRays = nullptr; // the renderer's shared Embree scene
+    ProgressSink mProgress;
+    std::unique_ptr<VPLPipeline> mPipeline;
+    const VPLSet* mRendered = nullptr; // the set this frame renders (the pipeline's published copy)
     double mGatherMilliseconds = 0.0;
-    RayRecorder mRecorder;            // smcir.synchronous: the step's rays, replayed alone
-    double mReplayMilliseconds = 0.0; // their replay time (0 when not measured)
-    bool mInitialized = false;
 };
 
 } // namespace vplgi

@@ -16,18 +16,42 @@
 #include "../passes/gbuffer_pass.h"
 #include "core/direct_lights.h"
 #include "core/path_tracer.h"
+#include "core/progress.h"
+#include "core/ray_scene.h"
 #include "core/scene.h"
 
 namespace vplgi {
 
 class ParamVisitor;
 
+// One Embree BVH per scene, shared by every CPU half and built on first use (`direct` never pays
+// for it). Owned by the renderer; it outlives the technique.
+class SharedRayScene {
+public:
+    explicit SharedRayScene(const Scene& scene) : mScene(scene) {}
+    const RayScene& get() const
+    {
+        if (!mRays) mRays = std::make_unique<RayScene>(mScene);
+        return *mRays;
+    }
+
+private:
+    const Scene& mScene;
+    mutable std::unique_ptr<RayScene> mRays;
+};
+
+// What setScene() gets: the scene (its geometry and materials do not change while the technique
+// lives; lights and cameras do, so CPU halves on other threads take FrameSnapshots), its GPU
+// buffers, the shader loader, the shared Embree scene, and where to report long precomputations.
 struct SceneContext {
     const Scene& scene;
     const GpuScene& gpuScene;
     const gl::ShaderLoader& shaders;
+    const SharedRayScene& rays;
+    ProgressSink progress;
 };
 
+// What update() and render() get each frame.
 struct FrameContext {
     const Camera& camera;
     int width = 0;
@@ -36,13 +60,19 @@ struct FrameContext {
     std::uint32_t frameIndex = 0;
     bool lightsChanged = false;      // emitters moved or changed this frame
     const DirectLightSet& lights;    // the direct emitters (with shadow layers assigned)
-    gl::PassTimer& timer;
+    gl::PassTimer& timer;            // open nested scopes for a technique's own passes
+    glm::mat4 viewFromWorld{1.0f};   // the camera's, as in the frame uniform block
+    glm::mat4 clipFromWorld{1.0f};
+    glm::vec2 jitter{0.0f};          // sub-pixel offset of this frame's projection [pixels] (0: none yet)
 };
 
-// HDR indirect radiance [W/(m^2 sr)] at each pixel, cleared to zero before render().
+// HDR indirect radiance [W/(m^2 sr)] at each pixel (one RGBA32F colour attachment), cleared to zero
+// before render(). Bindings live during render(): the frame uniform block (kBindingFrame), the
+// emitter SSBOs (kBindingPointEmitters, kBindingDirectionalEmitters); the G-buffer is handed in and
+// bound by gbuffer.bindForReading() on request; everything else a technique binds itself.
 struct IndirectTarget {
-    const gl::Texture& radiance;
-    const gl::Framebuffer& framebuffer;
+    const gl::RenderTarget& target;
+    const gl::Texture& radiance() const { return target.color(0); }
 };
 
 class Technique {
@@ -54,6 +84,9 @@ public:
     virtual void render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target) = 0;
     virtual void visitParams(ParamVisitor& visitor) = 0;
     virtual void reloadShaders(const gl::ShaderLoader&) {}
+    // Called after visitParams changed `changedKeys` between frames (a live change from the viewer
+    // or Renderer::applySettings): apply cheap ones at once, rebuild state on structural ones.
+    virtual void applyParamChanges(const std::set<std::string>& /*changedKeys*/) {}
     // Statistics of the last frame for `vplgi bench` (e.g. "rays", "vpls", "vplsMoved").
     virtual std::vector<std::pair<std::string, double>> frameStats() const { return {}; }
     // What a path-traced reference must simulate to be compared with this technique (`vplgi

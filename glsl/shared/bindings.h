@@ -26,6 +26,18 @@ VPLGI_CONST int kUnitDirectionalShadows = 9;
 VPLGI_CONST int kUnitDirect = 10;
 VPLGI_CONST int kUnitIndirect = 11;
 
+// Explicit uniform locations (program-wide: the vertex and fragment stages share them).
+VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
+VPLGI_CONST int kLocationDisplayView = 1;     // passes/tonemap.frag: renderer.display (DisplayView)
+
+// renderer.display: what the tone-map pass shows.
+VPLGI_CONST int kDisplayFinal = 0;    // direct + indirect, tone mapped
+VPLGI_CONST int kDisplayDirect = 1;   // direct light only (+ emission), tone mapped
+VPLGI_CONST int kDisplayIndirect = 2; // the technique's indirect light, tone mapped
+VPLGI_CONST int kDisplayAlbedo = 3;   // G-buffer base colour (linear, sRGB-encoded)
+VPLGI_CONST int kDisplayNormal = 4;   // G-buffer shading normal, n * 0.5 + 0.5
+VPLGI_CONST int kDisplayDepth = 5;    // distance to the eye d [m] as d / (1 + d)
+
 // Per-frame constants (std140; vec4/mat4 members only).
 struct FrameUniforms {
     mat4 clipFromWorld;

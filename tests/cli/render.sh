@@ -54,6 +54,21 @@ test -s "$work/c.exr"
 "$vplgi" render --scene "$here/scenes/maze.json" --frames 3 --width 64 --height 48 --out "$work/m.png" --quiet >/dev/null
 test -s "$work/m.png"
 
+# Each debug view (renderer.display) writes that view: every one differs from the final image.
+for view in direct albedo normal depth; do
+  "$vplgi" render --scene cornell --width 48 --height 48 --set renderer.display=$view --out "$work/view-$view.png" --quiet >/dev/null
+done
+"$vplgi" render --scene cornell --width 48 --height 48 --out "$work/a48.png" --quiet >/dev/null
+for view in albedo normal depth; do
+  if cmp -s "$work/a48.png" "$work/view-$view.png"; then echo "FAIL: display=$view shows the final image"; exit 1; fi
+done
+cmp "$work/a48.png" "$work/view-direct.png" # the direct technique: direct view = final image
+if "$vplgi" render --scene cornell --set renderer.display=bogus --out "$work/bogus.png" 2>"$work/bogus.err"; then
+  echo "FAIL: renderer.display=bogus accepted"; exit 1
+fi
+grep -q 'renderer.display' "$work/bogus.err"; test ! -e "$work/bogus.png"
+echo "display views: ok"
+
 # A glTF file as --scene (from the shared assets: skipped when absent, failed when CI=true).
 if find_shared_asset scenes/cornell-box/CornellBox.glb "$shared"; then
   "$vplgi" render --scene "$shared_asset_path" --width 64 --height 48 --out "$work/g.png" --quiet >/dev/null

@@ -1,4 +1,4 @@
-// The SMCIR worker thread against the synchronous sampler, with a light that the main thread moves
+// The VPL pipeline's worker thread (core/vpl_pipeline.h) running the SMCIR sampler, against the synchronous sampler, with a light that the main thread moves
 // while the worker runs (the race the frame snapshot removes). Tagged [threads]: the ThreadSanitizer
 // build runs these (scripts/test --tsan).
 #include <catch2/catch.hpp>
@@ -11,7 +11,7 @@
 #include "core/builtin_scenes.h"
 #include "core/ray_scene.h"
 #include "core/smcir_sampler.h"
-#include "core/smcir_worker.h"
+#include "core/vpl_pipeline.h"
 #include "core/vpl_gather.h"
 
 using namespace vplgi;
@@ -69,7 +69,7 @@ bool sameSet(const VPLSet& a, const VPLSet& b)
 
 } // namespace
 
-TEST_CASE("smcir worker: asynchronous steps equal synchronous ones while the light moves", "[smcir][threads]")
+TEST_CASE("VPL pipeline: asynchronous smcir steps equal synchronous ones while the light moves", "[smcir][threads]")
 {
     const int frames = 24, width = 24, height = 18;
     const float aspect = static_cast<float>(width) / height;
@@ -90,35 +90,29 @@ TEST_CASE("smcir worker: asynchronous steps equal synchronous ones while the lig
     for (const VPLSet& set : syncSets)
         syncImages.push_back(renderVPLGather(syncScene, syncRays, syncScene.cameras[0], width, height, set, {}));
 
-    // Asynchronous, as smcir-rt runs it: frame f waits for step f-1, shows that set, submits step f,
-    // and while the worker runs, this thread moves the light on for the next frame and gathers.
+    // Asynchronous, as smcir-rt runs it (VPLPipeline): frame f shows the set of step f-1 and submits
+    // step f; while the worker runs, this thread moves the light on for the next frame and gathers.
     Scene scene = cornellWithMovingLight();
     const RayScene rays(scene);
-    SMCIRSampler sampler(scene, rays, smallParams());
-    placeLight(scene, 0);
-    sampler.initialize(FrameSnapshot::of(scene, scene.cameras[0], aspect));
     std::vector<VPLSet> shownSets;
     std::vector<ImageRGBA32F> shownImages;
     {
-        SMCIRWorker worker(sampler);
-        placeLight(scene, 1);
-        for (int f = 1; f <= frames + 1; ++f) {
-            if (f > 1) worker.wait();
-            shownSets.push_back(sampler.vpls()); // the set of step f-1
-            if (f <= frames) worker.submit(FrameSnapshot::of(scene, scene.cameras[0], aspect));
-            placeLight(scene, f + 1); // writes scene.lights while step f runs
+        VPLPipeline pipeline(std::make_unique<SMCIRSampler>(scene, rays, smallParams()));
+        for (int f = 0; f <= frames + 1; ++f) {
+            placeLight(scene, f);
+            shownSets.push_back(pipeline.advance(FrameSnapshot::of(scene, scene.cameras[0], aspect), false));
+            placeLight(scene, f + 1); // writes scene.lights while step f runs on the worker
             shownImages.push_back(renderVPLGather(scene, rays, scene.cameras[0], width, height, shownSets.back(), {}));
         }
-        worker.wait();
     }
 
-    // Frame f of the asynchronous run shows what frame f-1 of the synchronous run showed.
-    REQUIRE(shownSets.size() == syncSets.size());
+    // Frame f + 1 of the asynchronous run shows what frame f of the synchronous run showed.
+    REQUIRE(shownSets.size() == syncSets.size() + 1);
     int differentSets = 0, differentImages = 0, lit = 0;
     for (std::size_t f = 0; f < syncSets.size(); ++f) {
-        if (!sameSet(shownSets[f], syncSets[f])) ++differentSets;
-        if (shownImages[f].pixels != syncImages[f].pixels) ++differentImages;
-        for (float v : shownImages[f].pixels) lit += v > 0.0f && v != 1.0f ? 1 : 0;
+        if (!sameSet(shownSets[f + 1], syncSets[f])) ++differentSets;
+        if (shownImages[f + 1].pixels != syncImages[f].pixels) ++differentImages;
+        for (float v : shownImages[f + 1].pixels) lit += v > 0.0f && v != 1.0f ? 1 : 0;
     }
     CHECK(differentSets == 0);
     CHECK(differentImages == 0);
