@@ -82,8 +82,8 @@ int runCompare(const std::vector<std::string>& args)
     parser.value("width", "W", "image width", "320");
     parser.value("height", "H", "image height", "180");
     parser.value("reference-mode", "M",
-                 "reference: full, direct, indirect or clamped; techniques are compared by the same part "
-                 "(indirect and clamped: their radiance minus their direct light)",
+                 "reference: full, direct, indirect, clamped or onebounce; techniques are compared by the same "
+                 "part (indirect, clamped and onebounce: their radiance minus their direct light)",
                  "full");
     parser.value("spp", "N", "reference samples per pixel", "256");
     parser.value("tracked", "N", "tracked pixels for the temporal metrics (SMCIR uses 8)", "8");

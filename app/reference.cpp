@@ -21,7 +21,8 @@ PathTracerParams::Mode parseReferenceMode(const std::string& text)
     if (text == "direct") return PathTracerParams::Mode::Direct;
     if (text == "indirect") return PathTracerParams::Mode::Indirect;
     if (text == "clamped") return PathTracerParams::Mode::Clamped;
-    throw Error("--mode \"" + text + "\" must be full, direct, indirect or clamped");
+    if (text == "onebounce") return PathTracerParams::Mode::OneBounce;
+    throw Error("--mode \"" + text + "\" must be full, direct, indirect, clamped or onebounce");
 }
 
 namespace {

@@ -33,7 +33,7 @@ CachedReference obtainReference(const ReferenceRequest& request);
 
 // $VPLGI_CACHE_DIR, else "out/reference-cache".
 std::string defaultReferenceCache();
-// "full", "direct", "indirect", "clamped" -> mode; throws Error otherwise.
+// "full", "direct", "indirect", "clamped", "onebounce" -> mode; throws Error otherwise.
 PathTracerParams::Mode parseReferenceMode(const std::string& text);
 
 } // namespace vplgi

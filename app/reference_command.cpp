@@ -20,7 +20,7 @@ int runReference(const std::vector<std::string>& args)
                         "clamped (indirect with the geometry term leaving the primary hit clamped).");
     parser.value("scene", "S", "built-in scene, scene file (.json) or .gltf/.glb");
     parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
-    parser.value("mode", "M", "full, direct, indirect or clamped", "full");
+    parser.value("mode", "M", "full, direct, indirect, clamped or onebounce", "full");
     parser.value("spp", "N", "samples per pixel", "64");
     parser.value("width", "W", "image width", "640");
     parser.value("height", "H", "image height", "360");

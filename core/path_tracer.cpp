@@ -30,9 +30,10 @@ void PathTracerParams::visitParams(ParamVisitor& v)
     v.field("reference.rrStartDepth", rrStartDepth, 1, 1025,
             "first path vertex reached only through Russian roulette (> maxDepth = never)");
     int modeIndex = static_cast<int>(mode);
-    v.field("reference.mode", modeIndex, 0, 3,
+    v.field("reference.mode", modeIndex, 0, 4,
             "0 full, 1 direct (emission + one reflection at the primary hit), 2 indirect (full - direct), "
-            "3 indirect with G clamped on the segment leaving the primary hit");
+            "3 indirect with G clamped on the segment leaving the primary hit, "
+            "4 onebounce (indirect reflected exactly once after the primary hit)");
     mode = static_cast<Mode>(modeIndex);
     v.field("reference.clampGeometry", clampGeometry, 0.0f, 1e9f, "G_max of the clamped mode [1/m^2]");
     v.field("reference.seed", seed, "random stream seed (same seed, same image)");
@@ -289,6 +290,7 @@ private:
             return depth <= 1;
         case Mode::Indirect:
         case Mode::Clamped:
+        case Mode::OneBounce: // trace() caps its depth at 2: emission at vertex 2 only
             return depth >= 2;
         }
         return false;
@@ -302,6 +304,7 @@ private:
             return depth == 0;
         case Mode::Indirect:
         case Mode::Clamped:
+        case Mode::OneBounce: // trace() caps its depth at 2: light samples at vertex 1 only
             return depth >= 1;
         }
         return false;
@@ -456,7 +459,10 @@ std::uint64_t countDirectLightRays(const DirectLightSet& lights, const SurfacePo
 glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays,
                             StartDirect* startDirect) const
 {
-    const int maxDepth = mParams.mode == Mode::Direct ? std::min(mParams.maxDepth, 1) : mParams.maxDepth;
+    // Direct and OneBounce are Full and Indirect with the paths cut short (see the header).
+    const int maxDepth = mParams.mode == Mode::Direct      ? std::min(mParams.maxDepth, 1)
+                         : mParams.mode == Mode::OneBounce ? std::min(mParams.maxDepth, 2)
+                                                           : mParams.maxDepth;
     glm::vec3 radiance(0.0f);
     glm::vec3 throughput(1.0f);
     float previousPdf = 0.0f;    // BRDF density of the direction that led to this vertex [1/sr]
@@ -582,7 +588,7 @@ void checkParams(int width, int height, const PathTracerParams& p)
     require(p.spp >= 1, "reference.spp must be >= 1");
     require(p.maxDepth >= 0, "reference.maxDepth must be >= 0");
     require(p.rrStartDepth >= 1, "reference.rrStartDepth must be >= 1");
-    require(static_cast<int>(p.mode) >= 0 && static_cast<int>(p.mode) <= 3, "reference.mode must be 0..3");
+    require(static_cast<int>(p.mode) >= 0 && static_cast<int>(p.mode) <= 4, "reference.mode must be 0..4");
     require(std::isfinite(p.clampGeometry) && p.clampGeometry >= 0.0f, "reference.clampGeometry must be >= 0");
     require(std::isfinite(p.timeBudgetSeconds) && p.timeBudgetSeconds >= 0.0,
             "reference.timeBudgetSeconds must be >= 0");

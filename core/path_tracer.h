@@ -70,6 +70,11 @@
 //             "clamp[s] the geometry term of all light transport path segments that originate from
 //             the primary hits, except for those that directly connect to a light source": light
 //             samples at x0 (direct light) are not clamped, and are not in Indirect anyway.
+//   OneBounce Indirect with the paths cut after vertex 2: light that was reflected exactly once
+//             between the light and the primary hit (light -> x1 -> x0 -> eye): light samples at
+//             vertex 1 and emission found at vertex 2; this is Indirect with
+//             maxDepth = min(maxDepth, 2). It is what RSM-based techniques (VSGL, LightSkin) estimate;
+//             on the furnace it is L_2 = rho^2 I0 / (pi R^2) (MATH.md 3).
 //  Whatever the mode, every vertex draws the same random numbers, so with the same seed and no
 //  Russian roulette in play the modes follow identical paths: Full = Direct + Indirect per sample
 //  up to rounding (a test checks this).
@@ -130,7 +135,7 @@ class ParamVisitor;
 struct SurfacePoint;
 
 struct PathTracerParams {
-    enum class Mode { Full = 0, Direct = 1, Indirect = 2, Clamped = 3 };
+    enum class Mode { Full = 0, Direct = 1, Indirect = 2, Clamped = 3, OneBounce = 4 };
 
     int spp = 64;                 // samples per pixel [1, 2^24]
     int maxDepth = 8;             // most reflections a light path may undergo [0, 1024] (see header)
@@ -147,7 +152,7 @@ struct PathTracerParams {
                                     // albedos, no normal maps): SMCIR 5's reference for its VPLs
 
     // Keys "reference.<field>": spp, maxDepth, rrStartDepth, mode (0 full, 1 direct, 2 indirect,
-    // 3 clamped), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress,
+    // 3 clamped, 4 onebounce), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress,
     // jitterPixels.
     void visitParams(ParamVisitor& visitor);
 };

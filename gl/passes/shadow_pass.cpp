@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "core/params.h"
 #include "glsl/shared/bindings.h"
+#include "glsl/shared/light_view.h"
 
 namespace vplgi {
 
@@ -33,10 +32,6 @@ gl::Program loadDirectional(const gl::ShaderLoader& shaders)
     return shaders.load("shadow directional", {{GL_VERTEX_SHADER, "passes/shadow.vert"},
                                                {GL_FRAGMENT_SHADER, "passes/shadow_directional.frag"}});
 }
-
-// GL cube-map face orientation: +X, -X, +Y, -Y, +Z, -Z with the conventional up vectors.
-const glm::vec3 kFaceDirection[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-const glm::vec3 kFaceUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
 
 } // namespace
 
@@ -73,14 +68,13 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
     glDepthFunc(GL_LESS);
     // Point emitters: cube faces, layer = emitter * 6 + face.
     std::vector<glm::mat4> cubeMatrices;
-    const glm::mat4 faceProjection = glm::perspective(glm::radians(90.0f), 1.0f, near, mFar);
     for (int i = 0; i < static_cast<int>(lights.points.size()); ++i) {
         shared::PointEmitter& e = lights.points[i];
         e.intensity.w = i < cubeCount ? static_cast<float>(i) : -1.0f;
         if (i >= cubeCount) continue;
-        glm::vec3 p(e.positionProfile);
-        for (int f = 0; f < 6; ++f)
-            cubeMatrices.push_back(faceProjection * glm::lookAt(p, p + kFaceDirection[f], kFaceUp[f]));
+        const glm::vec3 p(e.positionProfile);
+        for (int face = 0; face < shared::kLightViewCubeFaceCount; ++face)
+            cubeMatrices.push_back(shared::lightViewCubeFaceClipFromWorld(p, face, near, mFar));
     }
     gl::uploadVector(mEmitters, "shadow emitters", lights.points);
     if (cubeCount > 0) {
@@ -132,17 +126,14 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
         }
     }
 
-    // Directional emitters: orthographic maps around the scene's bounding sphere.
+    // Directional emitters: orthographic maps around the scene's bounding sphere (an empty scene has
+    // nothing to shadow: any finite box will do).
     std::vector<glm::mat4> directionalMatrices;
-    const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
-    const float radius = 0.5f * diagonal * 1.01f;
+    const glm::vec3 lower = bounds.empty() ? glm::vec3(0.0f) : bounds.lower;
+    const glm::vec3 upper = bounds.empty() ? glm::vec3(0.0f) : bounds.upper;
     for (std::size_t i = 0; i < lights.directionals.size(); ++i) {
         shared::DirectionalEmitter& d = lights.directionals[i];
-        glm::vec3 dir = glm::normalize(glm::vec3(d.direction));
-        glm::vec3 up = std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-        glm::mat4 view = glm::lookAt(center - dir * (2.0f * radius), center, up);
-        glm::mat4 projection = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
-        directionalMatrices.push_back(projection * view);
+        directionalMatrices.push_back(shared::lightViewDirectionalFit(glm::vec3(d.direction), lower, upper));
         d.direction.w = static_cast<float>(i);
     }
     gl::uploadVector(mDirectionalMatrices, "shadow directional matrices", directionalMatrices);

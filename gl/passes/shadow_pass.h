@@ -2,7 +2,8 @@
 // cube map in a cube-map array storing radial distance / far; directional emitters get an
 // orthographic depth map fitted to the scene bounds in a 2D array. All faces of all cubes are drawn
 // with one instanced, layered draw per mesh. Re-rendered only when the lights change, and then
-// only the cubes of emitters that moved.
+// only the cubes of emitters that moved. The face and directional matrices come from
+// glsl/shared/light_view.h (shared with the GLSL side and the other light-view passes).
 #pragma once
 
 #include "../api/shader_loader.h"

@@ -84,8 +84,11 @@ grep -q "ratio direct (against-set) / direct" "$work/b2.log"
 grep -q '"totalMedianMs"' "$work/b.log"
 echo "bench: table, ratios and JSON"
 
+"$vplgi" reference --scene cornell --mode onebounce --spp 2 --width 16 --height 16 --no-cache --out "$work/ob.exr" \
+  > "$work/ob.log" 2>&1
+test -s "$work/ob.exr"
 if "$vplgi" reference --scene cornell --mode sideways --out "$work/x.exr" 2> "$work/e.log"; then exit 1; fi
-grep -q 'must be full, direct, indirect or clamped' "$work/e.log"
+grep -q 'must be full, direct, indirect, clamped or onebounce' "$work/e.log"
 if "$vplgi" compare --scene cornell --set nonsense.key=1 --out "$work/y" 2> "$work/e2.log"; then exit 1; fi
 grep -q 'unknown parameter "nonsense.key"' "$work/e2.log"
 test ! -e "$work/y"
