@@ -682,6 +682,8 @@ TEST_CASE("the reference cache key covers every image-changing parameter and the
     visited.visitParams(dumper);
     const auto lines = static_cast<std::size_t>(std::count(key.begin(), key.end(), '\n'));
     CHECK(lines == dumper.values().size() - 2 + 1);
+}
+
 TEST_CASE("furnace sphere: onebounce is rho^2 I0 / (pi R^2) whatever the depth cap", "[reference][onebounce]")
 {
     // OneBounce keeps light reflected exactly once between the light and the primary hit: on the
