@@ -42,6 +42,14 @@ ShadowPass::ShadowPass(const gl::ShaderLoader& shaders)
     desc.minFilter = GL_NEAREST;
     desc.magFilter = GL_NEAREST;
     mSampler = gl::Sampler("shadow sampler", desc);
+    gl::RenderTargetDesc cubes;
+    cubes.depthFormat = GL_DEPTH_COMPONENT32F;
+    cubes.textureTarget = GL_TEXTURE_CUBE_MAP_ARRAY;
+    mCubes = gl::RenderTarget("point shadows", cubes);
+    gl::RenderTargetDesc directional;
+    directional.depthFormat = GL_DEPTH_COMPONENT32F;
+    directional.textureTarget = GL_TEXTURE_2D_ARRAY;
+    mDirectional = gl::RenderTarget("directional shadows", directional);
 }
 
 void ShadowPass::reloadShaders(const gl::ShaderLoader& shaders)
@@ -55,8 +63,16 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
     const AABB bounds = scene.scene().worldBounds();
     const float diagonal = bounds.empty() ? 1.0f : std::max(1e-3f, glm::length(bounds.extent()));
     mFar = 1.01f * diagonal;
-    const float near = 1e-4f * diagonal;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    renderCubes(scene, lights, params, 1e-4f * diagonal);
+    renderDirectional(scene, lights, params);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+}
 
+void ShadowPass::renderCubes(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params, float near)
+{
     GLint maxLayers = 0;
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     const int cubeCount = std::min<int>(static_cast<int>(lights.points.size()), maxLayers / 6);
@@ -64,8 +80,6 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
         std::fprintf(stderr, "warning: %zu point emitters, only %d get shadow cube maps (GL_MAX_ARRAY_TEXTURE_LAYERS)\n",
                      lights.points.size(), cubeCount);
 
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
     // Point emitters: cube faces, layer = emitter * 6 + face.
     std::vector<glm::mat4> cubeMatrices;
     for (int i = 0; i < static_cast<int>(lights.points.size()); ++i) {
@@ -77,57 +91,45 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
             cubeMatrices.push_back(shared::lightViewCubeFaceClipFromWorld(p, face, near, mFar));
     }
     gl::uploadVector(mEmitters, "shadow emitters", lights.points);
-    if (cubeCount > 0) {
-        gl::uploadVector(mCubeMatrices, "shadow cube matrices", cubeMatrices);
-        const gl::TextureDesc& d = mCubes.desc();
-        bool reallocated = false;
-        if (!mCubes || d.width != params.cubeSize || d.layers != cubeCount * 6) {
-            gl::TextureDesc desc;
-            desc.target = GL_TEXTURE_CUBE_MAP_ARRAY;
-            desc.format = GL_DEPTH_COMPONENT32F;
-            desc.width = desc.height = params.cubeSize;
-            desc.layers = cubeCount * 6;
-            mCubes = gl::Texture("point shadow cubes", desc);
-            mCubeFramebuffer = gl::Framebuffer("point shadows");
-            mCubeFramebuffer.attach(GL_DEPTH_ATTACHMENT, mCubes);
-            mCubeFramebuffer.setDrawBuffers(0);
-            mCubeFramebuffer.checkComplete();
-            reallocated = true;
+    if (cubeCount == 0) return;
+    gl::uploadVector(mCubeMatrices, "shadow cube matrices", cubeMatrices);
+    const bool reallocated = mCubes.resize(params.cubeSize, params.cubeSize, cubeCount * 6);
+    // Only cubes whose emitter moved are re-rendered, in runs of consecutive emitters.
+    std::vector<bool> dirty(static_cast<std::size_t>(cubeCount), true);
+    if (!reallocated && params.updateMovedOnly && mRenderedPositions.size() == lights.points.size())
+        for (int i = 0; i < cubeCount; ++i)
+            dirty[i] = mRenderedPositions[i] != glm::vec3(lights.points[i].positionProfile);
+    mRenderedPositions.clear();
+    for (const shared::PointEmitter& e : lights.points) mRenderedPositions.push_back(glm::vec3(e.positionProfile));
+    mLastRenderedCubes = 0;
+    mCubes.bindForDrawing();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mCubeMatrices.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingPointEmitters, mEmitters.id());
+    glUseProgram(mPointProgram.id());
+    mPointProgram.set("uFarDistance", mFar);
+    const float one = 1.0f;
+    for (int first = 0; first < cubeCount;) {
+        if (!dirty[first]) {
+            ++first;
+            continue;
         }
-        // Only cubes whose emitter moved are re-rendered, in runs of consecutive emitters.
-        std::vector<bool> dirty(static_cast<std::size_t>(cubeCount), true);
-        if (!reallocated && params.updateMovedOnly && mRenderedPositions.size() == lights.points.size())
-            for (int i = 0; i < cubeCount; ++i)
-                dirty[i] = mRenderedPositions[i] != glm::vec3(lights.points[i].positionProfile);
-        mRenderedPositions.clear();
-        for (const shared::PointEmitter& e : lights.points) mRenderedPositions.push_back(glm::vec3(e.positionProfile));
-        mLastRenderedCubes = 0;
-        glBindFramebuffer(GL_FRAMEBUFFER, mCubeFramebuffer.id());
-        glViewport(0, 0, params.cubeSize, params.cubeSize);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mCubeMatrices.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingPointEmitters, mEmitters.id());
-        glUseProgram(mPointProgram.id());
-        mPointProgram.set("uFarDistance", mFar);
-        const float one = 1.0f;
-        for (int first = 0; first < cubeCount;) {
-            if (!dirty[first]) {
-                ++first;
-                continue;
-            }
-            int last = first;
-            while (last < cubeCount && dirty[last]) ++last;
-            const int layers = (last - first) * 6;
-            glClearTexSubImage(mCubes.id(), 0, 0, 0, first * 6, params.cubeSize, params.cubeSize, layers,
-                               GL_DEPTH_COMPONENT, GL_FLOAT, &one);
-            mPointProgram.set("uFirstLayer", first * 6);
-            scene.draw(mPointProgram, GpuScene::Bind::Geometry, layers);
-            mLastRenderedCubes += last - first;
-            first = last;
-        }
+        int last = first;
+        while (last < cubeCount && dirty[last]) ++last;
+        const int layers = (last - first) * 6;
+        glClearTexSubImage(mCubes.depth().id(), 0, 0, 0, first * 6, params.cubeSize, params.cubeSize, layers,
+                           GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+        mPointProgram.set("uFirstLayer", first * 6);
+        scene.draw(mPointProgram, GpuScene::Bind::Geometry, layers);
+        mLastRenderedCubes += last - first;
+        first = last;
     }
+}
 
-    // Directional emitters: orthographic maps around the scene's bounding sphere (an empty scene has
-    // nothing to shadow: any finite box will do).
+void ShadowPass::renderDirectional(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params)
+{
+    // Orthographic maps around the scene's bounding sphere (an empty scene has nothing to shadow:
+    // any finite box will do).
+    const AABB bounds = scene.scene().worldBounds();
     std::vector<glm::mat4> directionalMatrices;
     const glm::vec3 lower = bounds.empty() ? glm::vec3(0.0f) : bounds.lower;
     const glm::vec3 upper = bounds.empty() ? glm::vec3(0.0f) : bounds.upper;
@@ -137,39 +139,22 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
         d.direction.w = static_cast<float>(i);
     }
     gl::uploadVector(mDirectionalMatrices, "shadow directional matrices", directionalMatrices);
-    if (!lights.directionals.empty()) {
-        const int count = static_cast<int>(lights.directionals.size());
-        const gl::TextureDesc& d = mDirectional.desc();
-        if (!mDirectional || d.width != params.mapSize || d.layers != count) {
-            gl::TextureDesc desc;
-            desc.target = GL_TEXTURE_2D_ARRAY;
-            desc.format = GL_DEPTH_COMPONENT32F;
-            desc.width = desc.height = params.mapSize;
-            desc.layers = count;
-            mDirectional = gl::Texture("directional shadow maps", desc);
-            mDirectionalFramebuffer = gl::Framebuffer("directional shadows");
-            mDirectionalFramebuffer.attach(GL_DEPTH_ATTACHMENT, mDirectional);
-            mDirectionalFramebuffer.setDrawBuffers(0);
-            mDirectionalFramebuffer.checkComplete();
-        }
-        glBindFramebuffer(GL_FRAMEBUFFER, mDirectionalFramebuffer.id());
-        glViewport(0, 0, params.mapSize, params.mapSize);
-        const float one = 1.0f;
-        glClearNamedFramebufferfv(mDirectionalFramebuffer.id(), GL_DEPTH, 0, &one);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());
-        glUseProgram(mDirectionalProgram.id());
-        mDirectionalProgram.set("uFirstLayer", 0);
-        scene.draw(mDirectionalProgram, GpuScene::Bind::Geometry, count);
-    }
-    glUseProgram(0);
-    glDisable(GL_DEPTH_TEST);
+    if (lights.directionals.empty()) return;
+    const int count = static_cast<int>(lights.directionals.size());
+    mDirectional.resize(params.mapSize, params.mapSize, count);
+    mDirectional.bindForDrawing();
+    mDirectional.clear();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());
+    glUseProgram(mDirectionalProgram.id());
+    mDirectionalProgram.set("uFirstLayer", 0);
+    scene.draw(mDirectionalProgram, GpuScene::Bind::Geometry, count);
 }
 
 void ShadowPass::bindForReading() const
 {
     // Unused units still get a valid texture of the right type: bind 0 only when absent.
-    glBindTextureUnit(shared::kUnitPointShadows, mCubes ? mCubes.id() : 0);
-    glBindTextureUnit(shared::kUnitDirectionalShadows, mDirectional ? mDirectional.id() : 0);
+    glBindTextureUnit(shared::kUnitPointShadows, mCubes ? mCubes.depth().id() : 0);
+    glBindTextureUnit(shared::kUnitDirectionalShadows, mDirectional ? mDirectional.depth().id() : 0);
     glBindSampler(shared::kUnitPointShadows, mSampler.id());
     glBindSampler(shared::kUnitDirectionalShadows, mSampler.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());

@@ -6,6 +6,7 @@
 // glsl/shared/light_view.h (shared with the GLSL side and the other light-view passes).
 #pragma once
 
+#include "../api/render_target.h"
 #include "../api/shader_loader.h"
 #include "../gpu_scene.h"
 #include "core/direct_lights.h"
@@ -37,12 +38,12 @@ public:
     int lastRenderedCubes() const { return mLastRenderedCubes; }
 
 private:
+    void renderCubes(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params, float near);
+    void renderDirectional(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params);
     gl::Program mPointProgram;
     gl::Program mDirectionalProgram;
-    gl::Texture mCubes;       // DEPTH32F cube-map array
-    gl::Texture mDirectional; // DEPTH32F 2D array
-    gl::Framebuffer mCubeFramebuffer;
-    gl::Framebuffer mDirectionalFramebuffer;
+    gl::RenderTarget mCubes;       // depth only: DEPTH32F cube-map array, layer = emitter * 6 + face
+    gl::RenderTarget mDirectional; // depth only: DEPTH32F 2D array, layer = directional emitter
     gl::Buffer mCubeMatrices;
     gl::Buffer mDirectionalMatrices;
     gl::Buffer mEmitters;

@@ -32,4 +32,12 @@ std::string saveTestImage(const std::string& name, const ImageRGBA32F& image)
     return path;
 }
 
+std::string objectLabel(GLenum identifier, GLuint id)
+{
+    char label[256] = {};
+    GLsizei length = 0;
+    glGetObjectLabel(identifier, id, sizeof label, &length, label);
+    return std::string(label, static_cast<std::size_t>(length));
+}
+
 } // namespace vplgi::test

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/image_io.h"
+#include "gl/api/objects.h"
 #include "gl/api/shader_loader.h"
 
 namespace vplgi::test {
@@ -13,6 +14,8 @@ namespace vplgi::test {
 void ensureGLContext();
 // The project's glsl/ directory.
 const gl::ShaderLoader& shaders();
+// The KHR_debug label of a GL object.
+std::string objectLabel(GLenum identifier, GLuint id);
 // Writes `image` under the test output directory (for failures) and returns the path.
 std::string saveTestImage(const std::string& name, const ImageRGBA32F& image);
 

@@ -16,14 +16,6 @@ using namespace vplgi;
 
 namespace {
 
-std::string objectLabel(GLenum identifier, GLuint id)
-{
-    char label[256] = {};
-    GLsizei length = 0;
-    glGetObjectLabel(identifier, id, sizeof label, &length, label);
-    return std::string(label, static_cast<std::size_t>(length));
-}
-
 gl::ShaderLoader probeLoader()
 {
     return gl::ShaderLoader(std::string(VPLGI_SOURCE_DIR) + "/glsl");
@@ -36,7 +28,7 @@ TEST_CASE("buffers and textures are created, labelled and round-trip data", "[gl
     test::ensureGLContext();
     const float data[4] = {1.0f, 2.0f, 3.0f, 4.0f};
     gl::Buffer buffer("test buffer", sizeof data, data);
-    CHECK(objectLabel(GL_BUFFER, buffer.id()) == "test buffer");
+    CHECK(test::objectLabel(GL_BUFFER, buffer.id()) == "test buffer");
     const float update = 9.0f;
     buffer.upload(sizeof(float), sizeof update, &update);
     float back[4] = {};
@@ -49,7 +41,7 @@ TEST_CASE("buffers and textures are created, labelled and round-trip data", "[gl
     desc.width = 4;
     desc.height = 2;
     gl::Texture texture("test texture", desc);
-    CHECK(objectLabel(GL_TEXTURE, texture.id()) == "test texture");
+    CHECK(test::objectLabel(GL_TEXTURE, texture.id()) == "test texture");
     std::vector<float> pixels(4 * 2 * 4);
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<float>(i);
     glTextureSubImage2D(texture.id(), 0, 0, 0, 4, 2, GL_RGBA, GL_FLOAT, pixels.data());

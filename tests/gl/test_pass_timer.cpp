@@ -10,6 +10,7 @@
 
 #include "gl/api/debug.h"
 #include "gl/api/objects.h"
+#include "gl/api/render_target.h"
 #include "gl/api/timer.h"
 #include "gl_test_context.h"
 
@@ -26,23 +27,14 @@ const std::vector<std::pair<std::string, int>> kExpectedScopes = {
 };
 
 struct WorkTargets {
-    gl::Texture texture;
-    gl::Framebuffer framebuffer;
+    gl::RenderTarget target{"pass timer test", gl::RenderTargetDesc::colors({GL_RGBA8})};
     gl::VertexArray noVertices{"pass timer test (no vertices)"};
     gl::Program fill;
     gl::Program compute;
 
     WorkTargets()
     {
-        gl::TextureDesc desc;
-        desc.format = GL_RGBA8;
-        desc.width = kSize;
-        desc.height = kSize;
-        texture = gl::Texture("pass timer test target", desc);
-        framebuffer = gl::Framebuffer("pass timer test");
-        framebuffer.attach(GL_COLOR_ATTACHMENT0, texture);
-        framebuffer.setDrawBuffers(1);
-        framebuffer.checkComplete();
+        target.resize(kSize, kSize);
         const gl::ShaderLoader& shaders = test::shaders();
         fill = shaders.load("pass timer test fill", {{GL_VERTEX_SHADER, "lib/fullscreen.vert"},
                                                      {GL_FRAGMENT_SHADER, "../tests/gl/glsl/pass_timer_fill.frag"}});
@@ -61,9 +53,9 @@ void recordFrame(gl::PassTimer& timer, const WorkTargets& work, int frame)
         gl::PassTimer::Scope scope(timer, "frame");
         {
             gl::PassTimer::Scope child(timer, "clear and draw");
-            glBindFramebuffer(GL_FRAMEBUFFER, work.framebuffer.id()); // the surfaceless context has no default one
+            glBindFramebuffer(GL_FRAMEBUFFER, work.target.framebuffer().id()); // the surfaceless context has no default one
             const float clear[4] = {0.1f * static_cast<float>(frame), 0.0f, 0.0f, 1.0f};
-            glClearNamedFramebufferfv(work.framebuffer.id(), GL_COLOR, 0, clear);
+            glClearNamedFramebufferfv(work.target.framebuffer().id(), GL_COLOR, 0, clear);
             {
                 gl::PassTimer::Scope grandchild(timer, "draw");
                 glViewport(0, 0, kSize, kSize);
@@ -76,7 +68,7 @@ void recordFrame(gl::PassTimer& timer, const WorkTargets& work, int frame)
         {
             gl::PassTimer::Scope child(timer, "compute");
             glUseProgram(work.compute.id());
-            glBindImageTexture(0, work.texture.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+            glBindImageTexture(0, work.target.color(0).id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glDispatchCompute(kSize / 8, kSize / 8, 1);
             glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
@@ -85,7 +77,7 @@ void recordFrame(gl::PassTimer& timer, const WorkTargets& work, int frame)
     {
         gl::PassTimer::Scope scope(timer, "after");
         const float clear[4] = {0.0f, 0.0f, 0.5f, 1.0f};
-        glClearNamedFramebufferfv(work.framebuffer.id(), GL_COLOR, 0, clear);
+        glClearNamedFramebufferfv(work.target.framebuffer().id(), GL_COLOR, 0, clear);
     }
     timer.endFrame();
 }

@@ -11,18 +11,6 @@
 
 using namespace vplgi;
 
-namespace {
-
-std::string objectLabel(GLenum identifier, GLuint id)
-{
-    char label[256] = {};
-    GLsizei length = 0;
-    glGetObjectLabel(identifier, id, sizeof label, &length, label);
-    return std::string(label, static_cast<std::size_t>(length));
-}
-
-} // namespace
-
 TEST_CASE("render target: labelled attachments, re-created only when the size changes", "[gl]")
 {
     test::ensureGLContext();
@@ -33,10 +21,10 @@ TEST_CASE("render target: labelled attachments, re-created only when the size ch
     CHECK(target.resize(8, 4));
     CHECK(target.width() == 8);
     CHECK(target.height() == 4);
-    CHECK(objectLabel(GL_TEXTURE, target.color(0).id()) == "test target radiance");
-    CHECK(objectLabel(GL_TEXTURE, target.color(1).id()) == "test target display");
-    CHECK(objectLabel(GL_TEXTURE, target.depth().id()) == "test target depth");
-    CHECK(objectLabel(GL_FRAMEBUFFER, target.framebuffer().id()) == "test target");
+    CHECK(test::objectLabel(GL_TEXTURE, target.color(0).id()) == "test target radiance");
+    CHECK(test::objectLabel(GL_TEXTURE, target.color(1).id()) == "test target display");
+    CHECK(test::objectLabel(GL_TEXTURE, target.depth().id()) == "test target depth");
+    CHECK(test::objectLabel(GL_FRAMEBUFFER, target.framebuffer().id()) == "test target");
     const GLuint first = target.color(0).id();
     CHECK_FALSE(target.resize(8, 4)); // same size: nothing re-created
     CHECK(target.color(0).id() == first);
