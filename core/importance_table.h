@@ -26,7 +26,10 @@ struct ImportanceTable {
 ImportanceTable buildImportanceTable(std::vector<float> importance, int width, int height);
 
 // Readers for glsl/shared/importance.h (found by argument-dependent lookup).
-inline float importanceMarginal(const ImportanceTable& t, int u) { return t.marginal[static_cast<std::size_t>(u)]; }
+inline float importanceMarginal(const ImportanceTable& t, int u)
+{
+    return t.marginal[static_cast<std::size_t>(u)];
+}
 inline float importanceColumn(const ImportanceTable& t, int u, int v)
 {
     return t.columns[static_cast<std::size_t>(v) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(u)];
@@ -37,6 +40,7 @@ inline float importanceValue(const ImportanceTable& t, int u, int v)
 }
 
 // Draw i = 0..count-1 uses shared::importanceUniforms(seed, i), as the GPU kernel does.
-std::vector<shared::ImportanceSample> sampleImportanceTable(const ImportanceTable& table, int count, std::uint32_t seed);
+std::vector<shared::ImportanceSample> sampleImportanceTable(const ImportanceTable& table, int count,
+                                                            std::uint32_t seed);
 
 } // namespace vplgi

@@ -70,7 +70,7 @@ TEST_CASE("an all-zero map draws no texel", "[importance]")
     CHECK(s.probability == 0.0f);
 }
 
-TEST_CASE("the hash uniforms are in [0, 1) and depend on seed and index", "[importance]")
+TEST_CASE("the hash uniforms lie below 1 and depend on seed and index", "[importance]")
 {
     const glm::vec2 a = shared::importanceUniforms(1u, 0u);
     const glm::vec2 b = shared::importanceUniforms(1u, 1u);
