@@ -37,7 +37,8 @@ void ImportanceSampler::build(const gl::Texture& importance, NextRead next, gl::
     mColumnPass.dispatch(width, 1, NextRead::StorageBuffer, timer);
     mMarginalPass.program().set("uWidth", width);
     mMarginalPass.program().set("uHeight", height);
-    mMarginalPass.dispatch(mMarginalPass.workGroupSize().x, 1, next, timer); // exactly one work-group
+    // Exactly one work-group; the tables are always made visible to sample() as well.
+    mMarginalPass.dispatch(mMarginalPass.workGroupSize().x, 1, next | NextRead::StorageBuffer, timer);
 }
 
 void ImportanceSampler::sample(const gl::Texture& importance, int count, std::uint32_t seed, NextRead next,

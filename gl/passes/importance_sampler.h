@@ -35,7 +35,8 @@ public:
     explicit ImportanceSampler(const gl::ShaderLoader& shaders, std::string name = "importance sampler");
 
     // Builds the tables from level 0 of `importance` (GL_R32F, values finite and >= 0), then issues
-    // the barrier for `next` (sample() itself needs NextRead::StorageBuffer).
+    // the barrier for `next` and for sample() (NextRead::StorageBuffer). Writes to `importance`
+    // before this call need the caller's barrier for image reads (NextRead::Image).
     void build(const gl::Texture& importance, NextRead next, gl::PassTimer* timer = nullptr);
     // Draws `count` texels with the uniforms of (seed, 0..count-1) into samples(), then issues the
     // barrier for `next`. `importance` is the texture of the last build(), unchanged since.
