@@ -16,6 +16,7 @@
 #include "gl/api/debug.h"
 #include "gl/passes/importance_sampler.h"
 #include "gl_test_context.h"
+#include "prefix_sum_twin.h"
 
 using namespace vplgi;
 using test::firstBitDifference;
@@ -180,4 +181,31 @@ TEST_CASE("the importance sampler rejects a map that is not R32F", "[gl][importa
     gl::Texture texture("not an importance map", desc);
     ImportanceSampler sampler(test::shaders());
     CHECK_THROWS_WITH(sampler.build(texture, NextRead::None), Catch::Contains("GL_R32F"));
+}
+
+TEST_CASE("why the marginal is a serial sum: a log-step scan moves past zero terms", "[gl][importance][numbers]")
+{
+    // The design evidence for gl/passes/importance_sampler.h (1): over column totals with zeros, the
+    // serial recurrence keeps R(u) == R(u-1) bit for bit where T(u) = 0, so the search can never stop
+    // on a zero column; the block scan of PrefixSumPass (its twin, bit-identical to the GPU) does not.
+    Pcg32 rng(9, 3);
+    std::vector<float> totals(2048);
+    for (float& t : totals)
+        t = rng.uniform() < 0.3f ? 0.0f : (0.5f + rng.uniform()) * std::ldexp(1.0f, static_cast<int>(rng.below(9)) - 4);
+    std::vector<float> logStep = totals;
+    test::prefixSumTwin(logStep, 256);
+    std::vector<float> serial = totals;
+    for (std::size_t u = 1; u < serial.size(); ++u)
+        serial[u] += serial[u - 1];
+    int logStepMoves = 0, serialMoves = 0, zeros = 0;
+    for (std::size_t u = 1; u < totals.size(); ++u) {
+        if (totals[u] != 0.0f) continue;
+        ++zeros;
+        logStepMoves += logStep[u] != logStep[u - 1];
+        serialMoves += serial[u] != serial[u - 1];
+    }
+    std::cout << "prefix sums over 2048 column totals with " << zeros << " zeros: the log-step scan changes at "
+              << logStepMoves << " of them, the serial sum at " << serialMoves << "\n";
+    CHECK(serialMoves == 0);
+    CHECK(logStepMoves > 0);
 }
