@@ -217,6 +217,28 @@ CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std:
     return result;
 }
 
+// The report's plain data: the inputs that describe the run and each technique's summary.
+CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std::vector<TechniqueRun>& runs,
+                         const FrameLoopResult& loop, const std::vector<glm::ivec2>& tracked, double exposure)
+{
+    CompareReport report;
+    report.sceneSource = scene.source;
+    report.sceneName = scene.name;
+    report.width = o.size.width;
+    report.height = o.size.height;
+    report.frames = o.animation.frames;
+    report.fps = o.animation.fps;
+    report.exposure = exposure;
+    report.referenceMode = o.referenceModeName;
+    report.referenceSpp = o.reference.spp;
+    report.referencesRendered = loop.referencesRendered;
+    report.comparedPart = comparedPartText(o.reference.mode);
+    report.trackedPixels = tracked;
+    report.referenceTracked = loop.referenceTracked;
+    for (const TechniqueRun& run : runs) report.techniques.push_back(summarize(run, loop.referenceTracked, exposure));
+    return report;
+}
+
 } // namespace
 
 int runCompare(const std::vector<std::string>& args)
@@ -248,22 +270,7 @@ int runCompare(const std::vector<std::string>& args)
     const std::vector<glm::ivec2> tracked = trackedPixels(o.size.width, o.size.height, o.trackedCount);
     const FrameLoopResult loop = renderFrames(o, runs, tracked, exposure);
 
-    CompareReport report;
-    report.sceneSource = lead.scene().source;
-    report.sceneName = lead.scene().name;
-    report.width = o.size.width;
-    report.height = o.size.height;
-    report.frames = o.animation.frames;
-    report.fps = o.animation.fps;
-    report.exposure = exposure;
-    report.referenceMode = o.referenceModeName;
-    report.referenceSpp = o.reference.spp;
-    report.referencesRendered = loop.referencesRendered;
-    report.comparedPart = comparedPartText(o.reference.mode);
-    report.trackedPixels = tracked;
-    report.referenceTracked = loop.referenceTracked;
-    for (const TechniqueRun& run : runs) report.techniques.push_back(summarize(run, loop.referenceTracked, exposure));
-    writeCompareReport(o.outDir, report);
+    writeCompareReport(o.outDir, makeReport(o, lead.scene(), runs, loop, tracked, exposure));
     std::printf("%s/index.html\n", o.outDir.c_str());
     return 0;
 }
