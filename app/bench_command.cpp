@@ -40,7 +40,7 @@ struct BenchResult {
     std::map<std::string, PassStats> stats; // technique statistics per frame (rays, VPLs, ...)
 };
 
-BenchResult benchOne(Session& session, int width, int height, int warmup, int frames, float fps)
+BenchResult benchOne(Session& session, ImageSize size, const AnimationOptions& animation, int warmup)
 {
     BenchResult r;
     r.technique = session.techniqueName();
@@ -61,10 +61,10 @@ BenchResult benchOne(Session& session, int width, int height, int warmup, int fr
             r.total.samples.push_back(f.total());
         }
     };
-    for (int frame = 0; frame < warmup + frames; ++frame) {
-        const float time = static_cast<float>(frame) / fps;
+    for (int frame = 0; frame < warmup + animation.frames; ++frame) {
+        const float time = animation.timeOf(frame);
         session.applyAnimations(time);
-        session.renderer().renderFrame(session.camera(), width, height, time);
+        session.renderer().renderFrame(session.camera(), size.width, size.height, time);
         addCompleted();
         if (frame < warmup) continue;
         for (const auto& [name, value] : session.renderer().technique().frameStats())
@@ -111,79 +111,30 @@ std::string jsonOf(const BenchResult& r)
     return s.str();
 }
 
-} // namespace
-
-int runBench(const std::vector<std::string>& args)
+// Per-pass medians of two runs side by side with their ratio b / a (passes of either run).
+void printRatioTable(const BenchResult& a, const BenchResult& b, const std::string& bSuffix)
 {
-    OptionParser parser("vplgi bench",
-                        "Times every pass of a technique over frames (glFinish + wall clock on llvmpipe, GPU\n"
-                        "timestamp queries on GPUs) and prints median/min/max per pass as markdown and JSON.\n"
-                        "--against runs a second technique in the same process and prints per-pass ratios.");
-    parser.value("scene", "S", "built-in scene, scene file (.json) or .gltf/.glb");
-    parser.value("technique", "T", "technique to time", "direct");
-    parser.value("against", "T2", "second technique, timed in the same run; ratios T2 / T");
-    parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
-    parser.value("frames", "N", "timed frames", "10");
-    parser.value("warmup", "N", "untimed frames first (the first frame also builds shadow maps)", "1");
-    parser.value("fps", "F", "animation frames per second (the scene file's animations run)", "30");
-    parser.value("width", "W", "image width", "640");
-    parser.value("height", "H", "image height", "360");
-    parser.value("json", "FILE", "also write the JSON here");
-    parser.value("set", "KEY=VALUE", "set a parameter (both runs)", "", true);
-    parser.value("against-set", "KEY=VALUE", "set a parameter of the --against run only (e.g. to time one option)", "",
-                 true);
-    if (!parser.parse(args)) return 0;
-    require(parser.has("scene"), "--scene is required (e.g. --scene maze)");
-    const int frames = parser.getInt("frames", 1, 100000);
-    const int warmup = parser.getInt("warmup", 0, 100000);
-    const float fps = parser.getFloat("fps", 0.001f, 10000.0f);
-    const int width = parser.getInt("width", 1, 16384);
-    const int height = parser.getInt("height", 1, 16384);
-    Settings settings;
-    for (const std::string& s : parser.getAll("set")) settings.push_back(parseSetting(s));
+    const std::string bName = b.technique + bSuffix;
+    std::printf("| pass | %s ms | %s ms | ratio %s / %s |\n|---|---|---|---|\n", a.technique.c_str(), bName.c_str(),
+                bName.c_str(), a.technique.c_str());
+    std::vector<std::string> order = a.order;
+    for (const std::string& n : b.order)
+        if (std::find(order.begin(), order.end(), n) == order.end()) order.push_back(n);
+    for (const std::string& n : order) {
+        double ma = a.passes.count(n) ? a.passes.at(n).median() : 0.0;
+        double mb = b.passes.count(n) ? b.passes.at(n).median() : 0.0;
+        std::printf("| %s | %s | %s | %s |\n", n.c_str(), formatNumber(ma).c_str(), formatNumber(mb).c_str(),
+                    ma > 0.0 ? formatNumber(mb / ma, 3).c_str() : "-");
+    }
+    std::printf("| **total** | %s | %s | %s |\n\n", formatNumber(a.total.median()).c_str(),
+                formatNumber(b.total.median()).c_str(), formatNumber(b.total.median() / a.total.median(), 3).c_str());
+}
 
-    std::vector<std::string> names = {parser.get("technique")};
-    if (parser.has("against")) names.push_back(parser.get("against"));
-    require(parser.has("against") || !parser.has("against-set"), "--against-set needs --against");
-    Settings againstSettings = settings;
-    for (const std::string& s : parser.getAll("against-set")) againstSettings.push_back(parseSetting(s));
-    std::unique_ptr<gl::Context> context; // outlives the sessions' GL objects
-    std::vector<Settings> perTechnique = {settings};
-    if (names.size() == 2) perTechnique.push_back(againstSettings);
-    std::vector<std::unique_ptr<Session>> sessions =
-        createSessions(parser.get("scene"), parser.get("camera"), names, perTechnique);
-    context = gl::createHeadlessContext();
-    std::printf("scene %s, %dx%d, %s\n\n", sessions.front()->scene().source.c_str(), width, height,
-                context->description().c_str());
-    // Said only on GPUs, so that llvmpipe output is as it was (glFinish + wall clock, no lag).
-    if (gl::PassTimer::defaultMode() == gl::PassTimer::Mode::TimestampQueries)
-        std::printf("timing: GPU timestamp queries, read 1-3 frames late (each sample is attributed to the frame "
-                    "that issued it)\n\n");
-    std::vector<BenchResult> results;
-    for (auto& session : sessions) {
-        session->createRenderer();
-        results.push_back(benchOne(*session, width, height, warmup, frames, fps));
-        std::printf("%s\n", markdown(results.back(), frames).c_str());
-    }
-    if (results.size() == 2) {
-        const BenchResult &a = results[0], &b = results[1];
-        const std::string bName = b.technique + (parser.has("against-set") ? " (against-set)" : "");
-        std::printf("| pass | %s ms | %s ms | ratio %s / %s |\n|---|---|---|---|\n", a.technique.c_str(), bName.c_str(),
-                    bName.c_str(), a.technique.c_str());
-        std::vector<std::string> order = a.order;
-        for (const std::string& n : b.order)
-            if (std::find(order.begin(), order.end(), n) == order.end()) order.push_back(n);
-        for (const std::string& n : order) {
-            double ma = a.passes.count(n) ? a.passes.at(n).median() : 0.0;
-            double mb = b.passes.count(n) ? b.passes.at(n).median() : 0.0;
-            std::printf("| %s | %s | %s | %s |\n", n.c_str(), formatNumber(ma).c_str(), formatNumber(mb).c_str(),
-                        ma > 0.0 ? formatNumber(mb / ma, 3).c_str() : "-");
-        }
-        std::printf("| **total** | %s | %s | %s |\n\n", formatNumber(a.total.median()).c_str(),
-                    formatNumber(b.total.median()).c_str(), formatNumber(b.total.median() / a.total.median(), 3).c_str());
-    }
-    // Ray efficiency of CPU stages that report their rays: the very rays the stage cast in a frame,
-    // replayed alone on the same threads, over the stage's wall time (SMCIR's goal: >= 0.75).
+// Ray efficiency of CPU stages that report their rays: the very rays the stage cast in a frame,
+// replayed alone on the same threads, over the stage's wall time (SMCIR's goal: >= 0.75). Prints one
+// line per run that reports its rays; returns the items of the JSON array.
+std::string rayEfficiency(const std::vector<BenchResult>& results)
+{
     std::string efficiencyJson;
     for (const BenchResult& r : results) {
         auto rays = r.stats.find("sampler: rays");
@@ -204,10 +155,63 @@ int runBench(const std::vector<std::string>& args)
                           "\", \"samplerMs\": " + std::to_string(total->second.median()) + ", \"replayMs\": " +
                           std::to_string(replay->second.median()) + ", \"efficiency\": " + std::to_string(efficiency) + "}";
     }
+    return efficiencyJson;
+}
+
+} // namespace
+
+int runBench(const std::vector<std::string>& args)
+{
+    OptionParser parser("vplgi bench",
+                        "Times every pass of a technique over frames (glFinish + wall clock on llvmpipe, GPU\n"
+                        "timestamp queries on GPUs) and prints median/min/max per pass as markdown and JSON.\n"
+                        "--against runs a second technique in the same process and prints per-pass ratios.");
+    addSceneOptions(parser, "set a parameter (both runs)");
+    addTechniqueOption(parser, "technique to time", "direct");
+    parser.value("against", "T2", "second technique, timed in the same run; ratios T2 / T");
+    parser.value("against-set", "KEY=VALUE", "set a parameter of the --against run only (e.g. to time one option)", "",
+                 true);
+    addSizeOptions(parser, "image", 640, 360);
+    addAnimationOptions(parser, "timed frames", 10);
+    parser.value("warmup", "N", "untimed frames first (the first frame also builds shadow maps)", "1");
+    parser.value("json", "FILE", "also write the JSON here");
+    if (!parser.parse(args)) return 0;
+    const SceneOptions scene = sceneOptions(parser);
+    const AnimationOptions animation = animationOptions(parser, 100000);
+    const int warmup = parser.getInt("warmup", 0, 100000);
+    const ImageSize size = imageSize(parser, 1, 16384);
+    const Settings& settings = scene.settings;
+
+    std::vector<std::string> names = {parser.get("technique")};
+    if (parser.has("against")) names.push_back(parser.get("against"));
+    require(parser.has("against") || !parser.has("against-set"), "--against-set needs --against");
+    Settings againstSettings = settings;
+    for (const std::string& s : parser.getAll("against-set")) againstSettings.push_back(parseSetting(s));
+    std::unique_ptr<gl::Context> context; // outlives the sessions' GL objects
+    std::vector<Settings> perTechnique = {settings};
+    if (names.size() == 2) perTechnique.push_back(againstSettings);
+    std::vector<std::unique_ptr<Session>> sessions =
+        createSessions(scene.sceneSpec, scene.camera, names, perTechnique);
+    context = gl::createHeadlessContext();
+    std::printf("scene %s, %dx%d, %s\n\n", sessions.front()->scene().source.c_str(), size.width, size.height,
+                context->description().c_str());
+    // Said only on GPUs, so that llvmpipe output is as it was (glFinish + wall clock, no lag).
+    if (gl::PassTimer::defaultMode() == gl::PassTimer::Mode::TimestampQueries)
+        std::printf("timing: GPU timestamp queries, read 1-3 frames late (each sample is attributed to the frame "
+                    "that issued it)\n\n");
+    std::vector<BenchResult> results;
+    for (auto& session : sessions) {
+        session->createRenderer();
+        results.push_back(benchOne(*session, size, animation, warmup));
+        std::printf("%s\n", markdown(results.back(), animation.frames).c_str());
+    }
+    if (results.size() == 2)
+        printRatioTable(results[0], results[1], parser.has("against-set") ? " (against-set)" : "");
+    std::string efficiencyJson = rayEfficiency(results);
     if (!efficiencyJson.empty()) efficiencyJson = ", \"rayEfficiency\": [" + efficiencyJson + "]";
-    std::string json = "{\"scene\": \"" + sessions.front()->scene().source + "\", \"width\": " + std::to_string(width) +
-                       ", \"height\": " + std::to_string(height) + ", \"frames\": " + std::to_string(frames) +
-                       ", \"results\": [";
+    std::string json = "{\"scene\": \"" + sessions.front()->scene().source +
+                       "\", \"width\": " + std::to_string(size.width) + ", \"height\": " + std::to_string(size.height) +
+                       ", \"frames\": " + std::to_string(animation.frames) + ", \"results\": [";
     for (std::size_t i = 0; i < results.size(); ++i) json += (i ? ", " : "") + jsonOf(results[i]);
     json += "]" + efficiencyJson + "}\n";
     std::printf("%s", json.c_str());

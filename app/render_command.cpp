@@ -19,20 +19,16 @@ int runRender(const std::vector<std::string>& args)
     OptionParser parser("vplgi render", "Renders a scene headless (EGL, no window) and writes one image:\n"
                                         "a .png holds the tone-mapped display image, an .exr the linear radiance.");
     addSessionOptions(parser);
-    parser.value("width", "W", "image width in pixels", "640");
-    parser.value("height", "H", "image height in pixels", "360");
-    parser.value("frames", "N", "frames to render (animations advance 1/fps per frame); the last is written", "1");
-    parser.value("fps", "F", "animation frames per second", "30");
+    addSizeOptions(parser, "image", 640, 360);
+    addAnimationOptions(parser, "frames to render; the last is written", 1);
     parser.value("out", "FILE", "output image (.png or .exr); its directory must exist", "out/render.png");
     parser.flag("headless", "accepted for symmetry: render is always headless");
     parser.flag("quiet", "do not print the configuration and timings");
     if (!parser.parse(args)) return 0;
 
     // Everything that can be wrong with the input is checked before a context exists.
-    const int width = parser.getInt("width", 1, 16384);
-    const int height = parser.getInt("height", 1, 16384);
-    const int frames = parser.getInt("frames", 1, 1000000);
-    const float fps = parser.getFloat("fps", 0.001f, 10000.0f);
+    const ImageSize size = imageSize(parser, 1, 16384);
+    const AnimationOptions animation = animationOptions(parser, 1000000);
     const std::string out = parser.get("out");
     checkOutputPath(out);
     const bool defaultOut = !parser.has("out");
@@ -47,9 +43,9 @@ int runRender(const std::vector<std::string>& args)
     context = gl::createHeadlessContext();
     if (!quiet) std::printf("context = %s\n", context->description().c_str());
     session.createRenderer();
-    for (int frame = 0; frame < frames; ++frame) {
-        session.applyAnimations(static_cast<float>(frame) / fps);
-        session.renderer().renderFrame(session.camera(), width, height, static_cast<float>(frame) / fps);
+    for (int frame = 0; frame < animation.frames; ++frame) {
+        session.applyAnimations(animation.timeOf(frame));
+        session.renderer().renderFrame(session.camera(), size.width, size.height, animation.timeOf(frame));
     }
     if (!quiet) {
         gl::PassTimer& timer = session.renderer().timer();

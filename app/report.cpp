@@ -118,4 +118,158 @@ std::string svgLinePlot(const std::string& title, const std::string& xLabel, con
     return svg.str();
 }
 
+namespace {
+
+const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2"};
+
+} // namespace
+
+std::string compareImageName(const std::string& who, int frame, const std::string& suffix)
+{
+    char b[32];
+    std::snprintf(b, sizeof b, "f%04d", frame);
+    return "images/" + who + "-" + b + suffix;
+}
+
+bool compareKeepsImages(int frame, int frames)
+{
+    return frame == 0 || frame == frames - 1;
+}
+
+std::string compareCsv(const CompareReport& report)
+{
+    std::ostringstream csv;
+    csv << "technique,frames,mean_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
+           "temporal_abs_e_prime,median_frame_ms\n";
+    for (const CompareTechniqueResult& t : report.techniques) {
+        const ImageErrors& mean = t.meanErrors;
+        csv << t.name << "," << report.frames << "," << mean.meanAbsToneMapped << "," << mean.rmse << ","
+            << mean.relativeMSE << "," << mean.meanRelativeLuminance << "," << t.temporal.meanAbsError << ","
+            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "\n";
+    }
+    return csv.str();
+}
+
+std::string compareJson(const CompareReport& report)
+{
+    std::ostringstream json;
+    json << "{\n  \"scene\": \"" << report.sceneSource << "\",\n  \"width\": " << report.width
+         << ", \"height\": " << report.height << ", \"frames\": " << report.frames
+         << ",\n  \"exposure\": " << report.exposure << ",\n  \"reference\": {\"mode\": \"" << report.referenceMode
+         << "\", \"spp\": " << report.referenceSpp << ", \"rendered\": " << report.referencesRendered
+         << "},\n  \"techniques\": [\n";
+    for (std::size_t i = 0; i < report.techniques.size(); ++i) {
+        const CompareTechniqueResult& t = report.techniques[i];
+        const ImageErrors& mean = t.meanErrors;
+        json << "    {\"name\": \"" << t.name << "\", \"meanAbsToneMapped\": " << mean.meanAbsToneMapped
+             << ", \"rmse\": " << mean.rmse << ", \"relativeMSE\": " << mean.relativeMSE
+             << ", \"meanLuminanceBias\": " << mean.meanRelativeLuminance
+             << ", \"temporalAbsE\": " << t.temporal.meanAbsError
+             << ", \"temporalAbsEPrime\": " << t.temporal.meanAbsDerivative
+             << ", \"medianFrameMs\": " << t.medianFrameMs
+             << "}" << (i + 1 < report.techniques.size() ? "," : "") << "\n";
+    }
+    json << "  ]\n}\n";
+    return json.str();
+}
+
+std::string compareTrackedPlotName(std::size_t pixel)
+{
+    return "luminance-pixel" + std::to_string(pixel) + ".svg";
+}
+
+std::string compareTrackedPlot(const CompareReport& report, std::size_t pixel)
+{
+    std::vector<PlotSeries> series;
+    PlotSeries reference{"reference", {}, "#000000", true};
+    for (const std::vector<double>& frame : report.referenceTracked) reference.values.push_back(frame[pixel]);
+    series.push_back(reference);
+    for (std::size_t t = 0; t < report.techniques.size(); ++t) {
+        PlotSeries s{report.techniques[t].name, {}, kColors[t % 7], false};
+        for (const std::vector<double>& frame : report.techniques[t].tracked) s.values.push_back(frame[pixel]);
+        series.push_back(s);
+    }
+    const glm::ivec2 p = report.trackedPixels[pixel];
+    return svgLinePlot("tracked pixel " + std::to_string(pixel) + " (" + std::to_string(p.x) + ", " +
+                           std::to_string(p.y) + ")",
+                       "frame", "luminance [W/(m^2 sr)]", series, 480, 240);
+}
+
+namespace {
+
+std::string metricsTableRows(const CompareReport& report)
+{
+    std::ostringstream table;
+    for (const CompareTechniqueResult& t : report.techniques) {
+        const ImageErrors& mean = t.meanErrors;
+        table << "<tr><td>" << htmlEscape(t.name) << "</td><td>" << formatNumber(mean.meanAbsToneMapped)
+              << "</td><td>" << formatNumber(mean.rmse) << "</td><td>" << formatNumber(mean.relativeMSE)
+              << "</td><td>" << formatNumber(100.0 * mean.meanRelativeLuminance, 3) << "%</td><td>"
+              << formatNumber(t.temporal.meanAbsError) << "</td><td>" << formatNumber(t.temporal.meanAbsDerivative)
+              << "</td><td>" << formatNumber(t.medianFrameMs, 4) << "</td></tr>\n";
+    }
+    return table.str();
+}
+
+// The reference, each technique and each technique's error heat map at one frame.
+std::string frameFigures(const CompareReport& report, int frame)
+{
+    std::ostringstream html;
+    html << "<figure><img src=\"" << compareImageName("reference", frame, ".png")
+         << "\"><figcaption>reference</figcaption></figure>\n";
+    for (const CompareTechniqueResult& t : report.techniques)
+        html << "<figure><img src=\"" << compareImageName(t.name, frame, ".png") << "\"><figcaption>"
+             << htmlEscape(t.name) << "</figcaption></figure>\n";
+    html << "<br>\n";
+    for (const CompareTechniqueResult& t : report.techniques)
+        html << "<figure><img src=\"" << compareImageName(t.name, frame, "-error.png") << "\"><figcaption>"
+             << htmlEscape(t.name) << ": |E| heat map (black 0, white &ge; 0.25)</figcaption></figure>\n";
+    return html.str();
+}
+
+} // namespace
+
+std::string compareHtml(const CompareReport& report)
+{
+    std::ostringstream html;
+    html << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>vplgi compare: "
+         << htmlEscape(report.sceneName) << "</title>\n<style>body{font-family:sans-serif;margin:20px;max-width:1400px}"
+         << "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:4px 8px;text-align:right}"
+         << "td:first-child{text-align:left}figure{display:inline-block;margin:4px}figcaption{font-size:12px}"
+         << "img{image-rendering:pixelated}</style></head><body>\n";
+    html << "<h1>vplgi compare: " << htmlEscape(report.sceneName) << "</h1>\n<p>" << report.width << "x"
+         << report.height << ", " << report.frames << " frame(s) at " << report.fps
+         << " fps; reference: Embree path tracer, mode " << htmlEscape(report.referenceMode) << ", "
+         << report.referenceSpp << " spp (" << report.referencesRendered
+         << " distinct reference frame(s)); tone mapping for |E|: Reinhard on luminance at exposure "
+         << report.exposure << ". Tracked pixels: " << report.trackedPixels.size() << ". Metrics compare "
+         << report.comparedPart << " with the reference; the images show the whole display image.</p>\n";
+    html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>mean |E| (tone-mapped)</th><th>RMSE</th>"
+         << "<th>rel. MSE</th>"
+         << "<th>mean luminance bias</th><th>avg |E| tracked</th><th>avg |E'| tracked (SMCIR eq. 10)</th>"
+         << "<th>median frame [ms]</th></tr>\n"
+         << metricsTableRows(report) << "</table>\n<p>All numbers: <a href=\"metrics.csv\">metrics.csv</a>, "
+         << "<a href=\"metrics.json\">metrics.json</a>. Frame times are on this machine's OpenGL implementation.</p>\n";
+    html << "<h2>Frame 0</h2>\n" << frameFigures(report, 0);
+    if (report.frames > 1) {
+        const int last = report.frames - 1;
+        html << "<h2>Last frame (" << last << ")</h2>\n" << frameFigures(report, last);
+    }
+    html << "<h2>Luminance over time at tracked pixels</h2>\n";
+    for (std::size_t j = 0; j < report.trackedPixels.size(); ++j)
+        html << "<img src=\"" << compareTrackedPlotName(j) << "\" alt=\"luminance over time at tracked pixel " << j
+             << "\">\n";
+    html << "\n</body></html>\n";
+    return html.str();
+}
+
+void writeCompareReport(const std::string& directory, const CompareReport& report)
+{
+    for (std::size_t j = 0; j < report.trackedPixels.size(); ++j)
+        writeTextFile(directory + "/" + compareTrackedPlotName(j), compareTrackedPlot(report, j));
+    writeTextFile(directory + "/metrics.csv", compareCsv(report));
+    writeTextFile(directory + "/metrics.json", compareJson(report));
+    writeTextFile(directory + "/index.html", compareHtml(report));
+}
+
 } // namespace vplgi

@@ -6,25 +6,79 @@
 
 namespace vplgi {
 
-void addSessionOptions(OptionParser& parser)
+void addSceneOptions(OptionParser& parser, const std::string& setHelp)
 {
     parser.value("scene", "S", "built-in scene (cornell, furnace, maze, street), scene file (.json) or .gltf/.glb");
-    parser.value("technique", "T", "GI technique (default: the scene file's, else direct)");
     parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
-    parser.value("set", "KEY=VALUE", "set a parameter, e.g. renderer.exposure=2", "", true);
+    parser.value("set", "KEY=VALUE", setHelp, "", true);
 }
 
-SessionOptions sessionOptions(const OptionParser& parser)
+void addTechniqueOption(OptionParser& parser, const std::string& help, const std::string& defaultValue)
+{
+    parser.value("technique", "T", help, defaultValue);
+}
+
+void addSizeOptions(OptionParser& parser, const std::string& what, int width, int height)
+{
+    parser.value("width", "W", what + " width in pixels", std::to_string(width));
+    parser.value("height", "H", what + " height in pixels", std::to_string(height));
+}
+
+void addAnimationOptions(OptionParser& parser, const std::string& framesHelp, int frames)
+{
+    parser.value("frames", "N", framesHelp, std::to_string(frames));
+    parser.value("fps", "F", "animation frames per second (animations advance 1/fps per frame)", "30");
+}
+
+SceneOptions sceneOptions(const OptionParser& parser)
 {
     require(parser.has("scene"), "--scene is required (e.g. --scene cornell)");
-    SessionOptions options;
+    SceneOptions options;
     options.sceneSpec = parser.get("scene");
-    options.technique = parser.get("technique");
     options.camera = parser.get("camera");
     for (const std::string& s : parser.getAll("set")) options.settings.push_back(parseSetting(s));
     return options;
 }
 
+ImageSize imageSize(const OptionParser& parser, int min, int max)
+{
+    return {parser.getInt("width", min, max), parser.getInt("height", min, max)};
+}
+
+AnimationOptions animationOptions(const OptionParser& parser, int maxFrames)
+{
+    return {parser.getInt("frames", 1, maxFrames), parser.getFloat("fps", 0.001f, 10000.0f)};
+}
+
+void addSessionOptions(OptionParser& parser)
+{
+    addSceneOptions(parser, "set a parameter, e.g. renderer.exposure=2");
+    addTechniqueOption(parser, "GI technique (default: the scene file's, else direct)");
+}
+
+SessionOptions sessionOptions(const OptionParser& parser)
+{
+    SceneOptions scene = sceneOptions(parser);
+    SessionOptions options;
+    options.sceneSpec = scene.sceneSpec;
+    options.technique = parser.get("technique");
+    options.camera = scene.camera;
+    options.settings = scene.settings;
+    return options;
+}
+
+const Camera& resolveCamera(Scene& scene, const std::string& name)
+{
+    if (scene.cameras.empty()) scene.cameras.push_back(makeDefaultCamera(scene.worldBounds()));
+    const std::string wanted = name.empty() ? scene.cameras.front().name : name;
+    const Camera* camera = scene.findCamera(wanted);
+    if (!camera) {
+        std::string known;
+        for (const Camera& c : scene.cameras) known += (known.empty() ? "" : ", ") + c.name;
+        throw Error("scene " + scene.name + " has no camera \"" + wanted + "\" (cameras: " + known + ")");
+    }
+    return *camera;
+}
 
 Session::Session(const SessionOptions& options) : mDescription(loadSceneSpec(options.sceneSpec))
 {
@@ -33,23 +87,15 @@ Session::Session(const SessionOptions& options) : mDescription(loadSceneSpec(opt
                                                        : "direct";
     mTechnique = createTechnique(mTechniqueName);
 
-    std::vector<std::pair<std::string, std::string>> settings = mDescription.settings;
+    Settings settings = mDescription.settings;
     settings.insert(settings.end(), options.settings.begin(), options.settings.end());
     ParamSetter setter(settings);
     visitAll(setter);
     if (options.rejectUnknownSettings) setter.finish();
     mUsedKeys = setter.usedKeys();
 
-    Scene& scene = mDescription.scene;
-    if (scene.cameras.empty()) scene.cameras.push_back(makeDefaultCamera(scene.worldBounds()));
-    mCameraName = options.camera.empty() ? scene.cameras.front().name : options.camera;
-    const Camera* camera = scene.findCamera(mCameraName);
-    if (!camera) {
-        std::string known;
-        for (const Camera& c : scene.cameras) known += (known.empty() ? "" : ", ") + c.name;
-        throw Error("scene " + scene.name + " has no camera \"" + mCameraName + "\" (cameras: " + known + ")");
-    }
-    mCamera = *camera;
+    mCamera = resolveCamera(mDescription.scene, options.camera);
+    mCameraName = mCamera.name;
 }
 
 void Session::visitAll(ParamVisitor& visitor)

@@ -1,6 +1,8 @@
-// What `render` and `view` share: load the scene description, resolve technique and parameters
-// (scene-file settings, then --set on the command line; unknown keys are errors), pick the camera,
-// then create the renderer once a GL context is current.
+// What the subcommands share. The options: render, view, bench, compare and reference declare
+// --scene, --camera, --set, --technique, --width/--height and --frames/--fps here, each with its own
+// defaults (and, where the meaning differs, its own help). The session: load the scene description,
+// resolve technique and parameters (scene-file settings, then --set on the command line; unknown keys
+// are errors), pick the camera, then create the renderer once a GL context is current.
 #pragma once
 
 #include <memory>
@@ -20,16 +22,51 @@ struct SessionOptions {
     std::string sceneSpec;
     std::string technique;  // empty: the scene file's, else "direct"
     std::string camera;     // empty: the scene's first camera
-    std::vector<std::pair<std::string, std::string>> settings; // --set, applied after the scene file's
+    Settings settings;      // --set, applied after the scene file's
     // When false, settings no field of this session knows are left for the caller to check (compare
     // applies one --set list to several techniques); see Session::usedKeys().
     bool rejectUnknownSettings = true;
 };
 
 class OptionParser;
-// Declares --scene, --technique, --camera, --set on a subcommand's parser, and reads them back.
+
+// --scene S, --camera NAME and the repeatable --set KEY=VALUE (whose help says what the command's
+// parameters are).
+void addSceneOptions(OptionParser& parser, const std::string& setHelp);
+// --technique T.
+void addTechniqueOption(OptionParser& parser, const std::string& help, const std::string& defaultValue = "");
+// --width W and --height H in pixels; `what` names the size ("image", "window").
+void addSizeOptions(OptionParser& parser, const std::string& what, int width, int height);
+// --frames N (the command says what its frames are) and --fps F (animation time is frame / fps).
+void addAnimationOptions(OptionParser& parser, const std::string& framesHelp, int frames);
+
+struct SceneOptions {
+    std::string sceneSpec;
+    std::string camera; // empty: the scene's first camera
+    Settings settings;  // --set, in order
+};
+SceneOptions sceneOptions(const OptionParser& parser); // throws Error when --scene is missing
+
+struct ImageSize {
+    int width = 0;
+    int height = 0;
+};
+ImageSize imageSize(const OptionParser& parser, int min, int max);
+
+struct AnimationOptions {
+    int frames = 1;
+    float fps = 30.0f;
+    float timeOf(int frame) const { return static_cast<float>(frame) / fps; }
+};
+AnimationOptions animationOptions(const OptionParser& parser, int maxFrames);
+
+// What render and view take: --scene, --technique, --camera, --set.
 void addSessionOptions(OptionParser& parser);
 SessionOptions sessionOptions(const OptionParser& parser);
+
+// The scene's camera called `name` (empty: the first); a scene without cameras gets the default one.
+// Throws Error naming the cameras there are.
+const Camera& resolveCamera(Scene& scene, const std::string& name);
 
 class Session;
 // Sessions of one scene with several techniques (compare, bench): each gets its settings list; keys

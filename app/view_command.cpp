@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "gl/api/objects.h"
 #include "gl/api/window.h"
 #include "session.h"
 
@@ -50,55 +51,77 @@ std::string nextScreenshotPath(const std::string& directory, const std::string& 
     }
 }
 
-} // namespace
+struct ViewOptions {
+    SessionOptions session;
+    ImageSize size;             // the window's at start
+    std::string screenshotDir;
+    bool writeExr = false;      // F12 also writes the linear radiance
+};
 
-int runView(const std::vector<std::string>& args)
+// The viewer's parts: window and session setup (constructor), input (key callbacks, camera
+// controls), the frame loop, the screenshot.
+class Viewer {
+public:
+    explicit Viewer(const ViewOptions& options);
+    void run();
+
+private:
+    void installKeyHandlers();
+    void moveCamera(float dt); // right mouse drag looks, WASD/QE move
+    void reloadShadersIfRequested();
+    void present(glm::ivec2 size);
+    void writeScreenshot();
+    void updateTitle(float dt);
+
+    ViewOptions mOptions;
+    std::unique_ptr<gl::Window> mWindow; // declared first: destroyed after the session's GL objects
+    Session mSession;
+    std::unique_ptr<gl::Framebuffer> mDisplayFramebuffer;
+    FlyCamera mFly;
+    glm::dvec2 mLastCursor{0.0};
+    bool mScreenshotRequested = false;
+    bool mReloadRequested = false;
+    double mFpsAccumulator = 0.0;
+    int mFpsFrames = 0;
+};
+
+Viewer::Viewer(const ViewOptions& options) : mOptions(options), mSession(options.session)
 {
-    OptionParser parser("vplgi view", "Opens a window on a scene. Keys: WASD/QE move, right mouse drag looks,\n"
-                                      "scroll sets speed, F12 screenshot, R reload shaders, Esc quit.");
-    addSessionOptions(parser);
-    parser.value("width", "W", "window width in pixels", "960");
-    parser.value("height", "H", "window height in pixels", "540");
-    parser.value("screenshot-dir", "DIR", "where F12 writes screenshots", "screenshots");
-    parser.flag("exr", "F12 also writes the linear radiance as EXR");
-    if (!parser.parse(args)) return 0;
-    const int width = parser.getInt("width", 1, 16384);
-    const int height = parser.getInt("height", 1, 16384);
-    const std::string screenshotDir = parser.get("screenshot-dir");
-    const bool writeExr = parser.has("exr");
-    std::unique_ptr<gl::Window> windowOwner; // declared first: destroyed after the session's GL objects
-    Session session(sessionOptions(parser));
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     require((display && *display) || (wayland && *wayland),
             "no display (DISPLAY is not set): use 'vplgi render' for headless rendering");
-    std::printf("%s", session.configuration().c_str());
+    std::printf("%s", mSession.configuration().c_str());
 
-    windowOwner = std::make_unique<gl::Window>("vplgi - " + session.scene().name + " - " + session.techniqueName(),
-                                               width, height);
-    gl::Window& window = *windowOwner;
-    std::printf("context = %s\n", window.description().c_str());
-    session.createRenderer();
+    mWindow = std::make_unique<gl::Window>("vplgi - " + mSession.scene().name + " - " + mSession.techniqueName(),
+                                           options.size.width, options.size.height);
+    std::printf("context = %s\n", mWindow->description().c_str());
+    mSession.createRenderer();
+    mDisplayFramebuffer = std::make_unique<gl::Framebuffer>("display (blit source)");
 
-    FlyCamera fly;
-    fly.fromCamera(session.camera());
-    AABB bounds = session.scene().worldBounds();
-    fly.speed = bounds.empty() ? 1.0f : 0.25f * glm::length(bounds.extent());
-    bool screenshotRequested = false, reloadRequested = false;
-    window.onKey = [&](int key, int action, int) {
+    mFly.fromCamera(mSession.camera());
+    AABB bounds = mSession.scene().worldBounds();
+    mFly.speed = bounds.empty() ? 1.0f : 0.25f * glm::length(bounds.extent());
+    installKeyHandlers();
+    mLastCursor = mWindow->cursorPosition();
+}
+
+void Viewer::installKeyHandlers()
+{
+    mWindow->onKey = [this](int key, int action, int) {
         if (action != GLFW_PRESS) return;
-        if (key == GLFW_KEY_ESCAPE) window.requestClose();
-        if (key == GLFW_KEY_F12) screenshotRequested = true;
-        if (key == GLFW_KEY_R) reloadRequested = true;
+        if (key == GLFW_KEY_ESCAPE) mWindow->requestClose();
+        if (key == GLFW_KEY_F12) mScreenshotRequested = true;
+        if (key == GLFW_KEY_R) mReloadRequested = true;
     };
-    window.onScroll = [&](double, double dy) { fly.speed *= std::pow(1.2f, static_cast<float>(dy)); };
+    mWindow->onScroll = [this](double, double dy) { mFly.speed *= std::pow(1.2f, static_cast<float>(dy)); };
+}
 
-    gl::Framebuffer displayFramebuffer("display (blit source)");
-    glm::dvec2 lastCursor = window.cursorPosition();
+void Viewer::run()
+{
+    gl::Window& window = *mWindow;
     auto last = std::chrono::steady_clock::now();
     const auto start = last;
-    double fpsAccumulator = 0.0;
-    int fpsFrames = 0;
     while (!window.shouldClose()) {
         window.pollEvents();
         auto now = std::chrono::steady_clock::now();
@@ -106,71 +129,110 @@ int runView(const std::vector<std::string>& args)
         last = now;
         float time = std::chrono::duration<float>(now - start).count();
 
-        // Camera controls.
-        glm::dvec2 cursor = window.cursorPosition();
-        if (window.isMouseButtonDown(GLFW_MOUSE_BUTTON_RIGHT)) {
-            fly.yaw += 0.005f * static_cast<float>(cursor.x - lastCursor.x);
-            fly.pitch = glm::clamp(fly.pitch - 0.005f * static_cast<float>(cursor.y - lastCursor.y), -1.55f, 1.55f);
-        }
-        lastCursor = cursor;
-        Camera& camera = session.camera();
-        glm::vec3 f = fly.forward();
-        glm::vec3 right = glm::normalize(glm::cross(f, glm::vec3(0, 1, 0)));
-        glm::vec3 move(0.0f);
-        if (window.isKeyDown(GLFW_KEY_W)) move += f;
-        if (window.isKeyDown(GLFW_KEY_S)) move -= f;
-        if (window.isKeyDown(GLFW_KEY_D)) move += right;
-        if (window.isKeyDown(GLFW_KEY_A)) move -= right;
-        if (window.isKeyDown(GLFW_KEY_E)) move += glm::vec3(0, 1, 0);
-        if (window.isKeyDown(GLFW_KEY_Q)) move -= glm::vec3(0, 1, 0);
-        camera.position += move * (fly.speed * std::min(dt, 0.25f));
-        camera.target = camera.position + f;
-        camera.up = glm::vec3(0, 1, 0);
-
-        if (reloadRequested) {
-            reloadRequested = false;
-            try {
-                session.renderer().reloadShaders();
-                std::printf("shaders reloaded\n");
-            } catch (const Error& e) {
-                std::fprintf(stderr, "shader reload failed, keeping the old shaders: %s\n", e.what());
-            }
-        }
+        moveCamera(dt);
+        reloadShadersIfRequested();
         glm::ivec2 size = window.framebufferSize();
         if (size.x <= 0 || size.y <= 0) continue; // minimised
-        session.renderer().renderFrame(camera, size.x, size.y, time);
-
-        displayFramebuffer.attach(GL_COLOR_ATTACHMENT0, session.renderer().displayTexture());
-        glBlitNamedFramebuffer(displayFramebuffer.id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y,
-                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        if (screenshotRequested) {
-            screenshotRequested = false;
-            std::filesystem::create_directories(screenshotDir);
-            std::string stem = "vplgi-" + session.scene().name;
-            std::string png = nextScreenshotPath(screenshotDir, stem, ".png");
-            writeImage(png, session.renderer().readDisplay());
-            std::printf("screenshot %s\n", png.c_str());
-            if (writeExr) {
-                std::string exr = png.substr(0, png.size() - 4) + ".exr";
-                writeImage(exr, session.renderer().readRadiance());
-                std::printf("screenshot %s\n", exr.c_str());
-            }
-            std::fflush(stdout);
+        mSession.renderer().renderFrame(mSession.camera(), size.x, size.y, time);
+        present(size);
+        if (mScreenshotRequested) {
+            mScreenshotRequested = false;
+            writeScreenshot();
         }
         window.swapBuffers();
-
-        fpsAccumulator += dt;
-        ++fpsFrames;
-        if (fpsAccumulator > 1.0) {
-            char title[256];
-            std::snprintf(title, sizeof title, "vplgi - %s - %s - %.1f fps (%.1f ms)", session.scene().name.c_str(),
-                          session.techniqueName().c_str(), fpsFrames / fpsAccumulator,
-                          session.renderer().timer().total());
-            glfwSetWindowTitle(window.handle(), title);
-            fpsAccumulator = 0.0;
-            fpsFrames = 0;
-        }
+        updateTitle(dt);
     }
+}
+
+void Viewer::moveCamera(float dt)
+{
+    gl::Window& window = *mWindow;
+    glm::dvec2 cursor = window.cursorPosition();
+    if (window.isMouseButtonDown(GLFW_MOUSE_BUTTON_RIGHT)) {
+        mFly.yaw += 0.005f * static_cast<float>(cursor.x - mLastCursor.x);
+        mFly.pitch = glm::clamp(mFly.pitch - 0.005f * static_cast<float>(cursor.y - mLastCursor.y), -1.55f, 1.55f);
+    }
+    mLastCursor = cursor;
+    Camera& camera = mSession.camera();
+    glm::vec3 f = mFly.forward();
+    glm::vec3 right = glm::normalize(glm::cross(f, glm::vec3(0, 1, 0)));
+    glm::vec3 move(0.0f);
+    if (window.isKeyDown(GLFW_KEY_W)) move += f;
+    if (window.isKeyDown(GLFW_KEY_S)) move -= f;
+    if (window.isKeyDown(GLFW_KEY_D)) move += right;
+    if (window.isKeyDown(GLFW_KEY_A)) move -= right;
+    if (window.isKeyDown(GLFW_KEY_E)) move += glm::vec3(0, 1, 0);
+    if (window.isKeyDown(GLFW_KEY_Q)) move -= glm::vec3(0, 1, 0);
+    camera.position += move * (mFly.speed * std::min(dt, 0.25f));
+    camera.target = camera.position + f;
+    camera.up = glm::vec3(0, 1, 0);
+}
+
+void Viewer::reloadShadersIfRequested()
+{
+    if (!mReloadRequested) return;
+    mReloadRequested = false;
+    try {
+        mSession.renderer().reloadShaders();
+        std::printf("shaders reloaded\n");
+    } catch (const Error& e) {
+        std::fprintf(stderr, "shader reload failed, keeping the old shaders: %s\n", e.what());
+    }
+}
+
+void Viewer::present(glm::ivec2 size)
+{
+    mDisplayFramebuffer->attach(GL_COLOR_ATTACHMENT0, mSession.renderer().displayTexture());
+    glBlitNamedFramebuffer(mDisplayFramebuffer->id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+void Viewer::writeScreenshot()
+{
+    std::filesystem::create_directories(mOptions.screenshotDir);
+    std::string stem = "vplgi-" + mSession.scene().name;
+    std::string png = nextScreenshotPath(mOptions.screenshotDir, stem, ".png");
+    writeImage(png, mSession.renderer().readDisplay());
+    std::printf("screenshot %s\n", png.c_str());
+    if (mOptions.writeExr) {
+        std::string exr = png.substr(0, png.size() - 4) + ".exr";
+        writeImage(exr, mSession.renderer().readRadiance());
+        std::printf("screenshot %s\n", exr.c_str());
+    }
+    std::fflush(stdout);
+}
+
+void Viewer::updateTitle(float dt)
+{
+    mFpsAccumulator += dt;
+    ++mFpsFrames;
+    if (mFpsAccumulator <= 1.0) return;
+    char title[256];
+    std::snprintf(title, sizeof title, "vplgi - %s - %s - %.1f fps (%.1f ms)", mSession.scene().name.c_str(),
+                  mSession.techniqueName().c_str(), mFpsFrames / mFpsAccumulator, mSession.renderer().timer().total());
+    glfwSetWindowTitle(mWindow->handle(), title);
+    mFpsAccumulator = 0.0;
+    mFpsFrames = 0;
+}
+
+} // namespace
+
+int runView(const std::vector<std::string>& args)
+{
+    OptionParser parser("vplgi view", "Opens a window on a scene. Keys: WASD/QE move, right mouse drag looks,\n"
+                                      "scroll sets speed, F12 screenshot, R reload shaders, Esc quit.");
+    addSessionOptions(parser);
+    addSizeOptions(parser, "window", 960, 540);
+    parser.value("screenshot-dir", "DIR", "where F12 writes screenshots", "screenshots");
+    parser.flag("exr", "F12 also writes the linear radiance as EXR");
+    if (!parser.parse(args)) return 0;
+    ViewOptions options;
+    options.size = imageSize(parser, 1, 16384);
+    options.screenshotDir = parser.get("screenshot-dir");
+    options.writeExr = parser.has("exr");
+    options.session = sessionOptions(parser);
+    Viewer viewer(options);
+    viewer.run();
     return 0;
 }
 
