@@ -26,6 +26,11 @@ VPLGI_CONST int kUnitDirectionalShadows = 9;
 VPLGI_CONST int kUnitDirect = 10;
 VPLGI_CONST int kUnitIndirect = 11;
 
+// Image units. RSM downsampling (glsl/passes/rsm_downsample.comp): level l of the RSM attachments
+// at kImageRSMSource + attachment, level l+1 at kImageRSMTarget + attachment (glsl/shared/rsm.h).
+VPLGI_CONST int kImageRSMSource = 0;
+VPLGI_CONST int kImageRSMTarget = 6;
+
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
 VPLGI_CONST int kLocationDisplayView = 1;     // passes/tonemap.frag: renderer.display (DisplayView)
