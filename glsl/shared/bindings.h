@@ -12,6 +12,16 @@ VPLGI_CONST int kBindingPointEmitters = 1;       // SSBO PointEmitter[]
 VPLGI_CONST int kBindingDirectionalEmitters = 2; // SSBO DirectionalEmitter[]
 VPLGI_CONST int kBindingShadowMatrices = 3;      // SSBO mat4[] (clipFromWorld per shadow layer)
 
+// Storage buffers of the compute passes (gl/passes/prefix_sum_pass, importance_sampler).
+VPLGI_CONST int kBindingScanValues = 4;          // SSBO float[]: scanned in place
+VPLGI_CONST int kBindingScanBlockSums = 5;       // SSBO float[]: one total per work-group block
+VPLGI_CONST int kBindingImportanceColumns = 6;   // SSBO float[W*H]: column prefix sums C(u,v), row-major
+VPLGI_CONST int kBindingImportanceMarginal = 7;  // SSBO float[W]: prefix sums of column totals R(u)
+VPLGI_CONST int kBindingImportanceSamples = 8;   // SSBO ImportanceSample[]
+
+// Image units (glBindImageTexture), a namespace separate from texture units.
+VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
+
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;
 VPLGI_CONST int kUnitMetallicRoughness = 1;

@@ -93,7 +93,7 @@ TEST_CASE("kNN: nanoflann finds the same distances as brute force for k = 1..16"
     CHECK(empty.neighbourDistancesSquared(1).empty());
 }
 
-TEST_CASE("kNN density of uniform points on a plane: mean of 1/p is the area (eq. 7, MATH.md 2)", "[knn]")
+TEST_CASE("kNN density of uniform points on a plane: mean of 1/p is the area (eq. 7, MATH.md 2)", "[knn][numbers]")
 {
     // N uniform points on a 10 m x 10 m square in the plane y = 1: p = 1/area everywhere, and the
     // eq. (7) estimate p = k / (N pi r_k^2) has E[1/p] = area exactly (self excluded). Points within
@@ -127,7 +127,7 @@ TEST_CASE("kNN density of uniform points on a plane: mean of 1/p is the area (eq
         const double meanInverse = sumInverse / interior; // -> area
         const double meanDensity = sumDensity / interior; // -> (1/area) k/(k-1), biased (MATH.md 2)
         const double local = static_cast<double>(kCount) * kInteriorArea / interior;
-        std::printf("kNN density, N = %zu on %.0f m^2, k = %2zu: mean 1/p = %.2f m^2 (area %.0f, from the interior"
+        std::printf("measured: kNN density, N = %zu on %.0f m^2, k = %2zu: mean 1/p = %.2f m^2 (area %.0f, from the interior"
                     " count %.2f), mean p * area = %.3f (k/(k-1) = %.3f)\n",
                     kCount, kArea, k, meanInverse, kArea, local, meanDensity * kArea,
                     k > 1 ? double(k) / double(k - 1) : 0.0);

@@ -335,7 +335,7 @@ FurnaceSummary summarizeFurnace(const Scene& scene, const RayScene& rays, const 
 
 } // namespace
 
-TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (5) = rho L_all", "[smcir]")
+TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (5) = rho L_all", "[smcir][numbers]")
 {
     FurnaceParams furnace; // R = 1, rho = 0.5, I0 = pi: L_n = 0.5^n, L_all = 1
     const Scene scene = makeFurnace(furnace);
@@ -358,6 +358,8 @@ TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (
             worst = std::max(worst, std::abs(v.radiance.g / three - 1.0));
             mean += v.radiance.g / three / 256.0;
         }
+        MEASURED("smcir furnace, VPL radiance (16 samples, 3 bounces) / (L1 + L2 + L3): mean " << mean << ", worst "
+                 << worst);
         CHECK(mean == Approx(1.0).epsilon(3e-3));
         CHECK(worst < 0.03);
     }
@@ -375,7 +377,7 @@ TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (
         sampler.initialize(scene.cameras[0]);
         REQUIRE(sampler.vpls().validCount() == 512);
         const FurnaceSummary initial = summarizeFurnace(scene, rays, furnace, sampler.vpls());
-        std::printf("smcir furnace, initialized (I = 512, k = 32): mean L = %.4f (L_all %.4f), mean 1/p = %.3f m^2 "
+        std::printf("measured: smcir furnace, initialized (I = 512, k = 32): mean L = %.4f (L_all %.4f), mean 1/p = %.3f m^2 "
                     "(4 pi R^2 = %.3f), eq. (5) / (rho L_all) = %.4f, worst error %.2f %%\n",
                     initial.meanRadiance, all, initial.meanInverseDensity, area, initial.meanEq5,
                     100.0 * initial.worstEq5);
@@ -398,7 +400,7 @@ TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (
         return summarizeFurnace(scene, rays, furnace, sampler.vpls());
     };
     const FurnaceSummary eq8 = warmed(0), wide = warmed(32);
-    std::printf("smcir furnace, 20 warm-up frames (I = 512): k = 4: mean L %.4f, mean 1/p / area %.4f, eq. (5) %.4f;"
+    std::printf("measured: smcir furnace, 20 warm-up frames (I = 512): k = 4: mean L %.4f, mean 1/p / area %.4f, eq. (5) %.4f;"
                 " k = 32: mean L %.4f, mean 1/p / area %.4f, eq. (5) %.4f\n",
                 eq8.meanRadiance / all, eq8.meanInverseDensity / area, eq8.meanEq5, wide.meanRadiance / all,
                 wide.meanInverseDensity / area, wide.meanEq5);
@@ -545,7 +547,7 @@ TEST_CASE("smcir stable slots: at most M_max slots change per frame, others keep
     CHECK(sampler.vpls().validCount() == 512);
 }
 
-TEST_CASE("smcir converges in a static scene: intensities even out, then stay even (maze)", "[smcir]")
+TEST_CASE("smcir converges in a static scene: intensities even out, then stay even (maze)", "[smcir][numbers]")
 {
     // The initial VPLs are uniform in area, so their intensities L/p spread over orders of magnitude
     // (lit and unlit rooms). Each frame replaces up to M_max of the weakest with candidates stronger
@@ -580,7 +582,7 @@ TEST_CASE("smcir converges in a static scene: intensities even out, then stay ev
         worstLog = std::max(worstLog, spreadOfLog(sampler.vpls()));
         moved += sampler.lastTimes().moved / 30.0;
     }
-    std::printf("smcir maze convergence (I = 512): CoV of I after 1 frame %.3f, after 30 %.3f, frames 31-60 mean %.3f;"
+    std::printf("measured: smcir maze convergence (I = 512): CoV of I after 1 frame %.3f, after 30 %.3f, frames 31-60 mean %.3f;"
                 " sd(log I) %.3f, %.3f, worst of 31-60 %.3f; moved per frame in 31-60 %.2f\n",
                 firstCoV, thirtyCoV, laterCoV, firstLog, thirtyLog, worstLog, moved);
     CHECK(thirtyCoV < firstCoV);

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "gl/api/debug.h"
 #include "gl/api/objects.h"
+#include "gl/passes/compute_pass.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/brdf.h"
 #include "glsl/shared/tonemap.h"
@@ -137,15 +138,13 @@ TEST_CASE("the BRDF and tone map give the same values in GLSL and C++", "[gl][br
         c.l = glm::vec4(direction(), 0);
         cases.push_back(c);
     }
-    gl::Program program = probeLoader().load("brdf probe", {{GL_COMPUTE_SHADER, "../tests/gl/glsl/brdf_probe.comp"}});
+    ComputePass probe(probeLoader(), "brdf probe", "../tests/gl/glsl/brdf_probe.comp");
     gl::Buffer input("brdf cases", static_cast<GLsizeiptr>(cases.size() * sizeof(Case)), cases.data());
     gl::Buffer output("brdf results", static_cast<GLsizeiptr>(cases.size() * 2 * sizeof(glm::vec4)));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, output.id());
-    program.set("uCount", static_cast<int>(cases.size()));
-    glUseProgram(program.id());
-    glDispatchCompute(static_cast<GLuint>((cases.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    bindStorageBuffer(0, input);
+    bindStorageBuffer(1, output);
+    probe.program().set("uCount", static_cast<int>(cases.size()));
+    probe.dispatch(static_cast<int>(cases.size()), 1, NextRead::BufferReadback);
     std::vector<glm::vec4> results(cases.size() * 2);
     glGetNamedBufferSubData(output.id(), 0, output.size(), results.data());
     int nonZero = 0;
