@@ -23,11 +23,6 @@ gl::Program loadProgram(const gl::ShaderLoader& shaders)
     return shaders.load("rsm", {{GL_VERTEX_SHADER, "passes/rsm.vert"}, {GL_FRAGMENT_SHADER, "passes/rsm.frag"}});
 }
 
-gl::Program loadDownsample(const gl::ShaderLoader& shaders)
-{
-    return shaders.load("rsm downsample", {{GL_COMPUTE_SHADER, "passes/rsm_downsample.comp"}});
-}
-
 bool isPowerOfTwo(int n)
 {
     return n > 0 && (n & (n - 1)) == 0;
@@ -41,7 +36,8 @@ float texelFactor(const glm::mat4& clipFromView, int size)
 
 } // namespace
 
-RSMPass::RSMPass(const gl::ShaderLoader& shaders) : mProgram(loadProgram(shaders)), mDownsample(loadDownsample(shaders))
+RSMPass::RSMPass(const gl::ShaderLoader& shaders)
+    : mProgram(loadProgram(shaders)), mDownsample(shaders, "rsm downsample", "passes/rsm_downsample.comp")
 {
     gl::RenderTargetDesc desc;
     desc.colorFormats.assign(shared::kRSMAttachmentCount, GL_RGBA32F);
@@ -55,7 +51,7 @@ RSMPass::RSMPass(const gl::ShaderLoader& shaders) : mProgram(loadProgram(shaders
 void RSMPass::reloadShaders(const gl::ShaderLoader& shaders)
 {
     mProgram = loadProgram(shaders);
-    mDownsample = loadDownsample(shaders);
+    mDownsample.reloadShaders(shaders);
 }
 
 std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet& lights, int size)
@@ -148,28 +144,25 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
 
 void RSMPass::downsample()
 {
-    // Minimal dispatch; ComputePass (branch `compute`, gl/passes/compute_pass.h) should replace
-    // the rounding and the barriers below once it is on main.
-    glUseProgram(mDownsample.id());
     for (int level = 1; level < mLevels; ++level) {
         const int size = std::max(1, mTarget.width() >> level);
+        // Level l through texelFetch (no sampler object: texelFetch ignores filtering), level l+1 as
+        // images; different levels of one texture are different memory.
         for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
-            const GLuint texture = mTarget.color(a).id();
-            glBindImageTexture(static_cast<GLuint>(shared::kImageRSMSource + a), texture, level - 1, GL_TRUE, 0,
-                               GL_READ_ONLY, GL_RGBA32F);
-            glBindImageTexture(static_cast<GLuint>(shared::kImageRSMTarget + a), texture, level, GL_TRUE, 0,
-                               GL_WRITE_ONLY, GL_RGBA32F);
+            glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), mTarget.color(a).id());
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+            bindImage(shared::kImageRSMTarget + a, mTarget.color(a), GL_WRITE_ONLY, level);
         }
-        glProgramUniform2i(mDownsample.id(), mDownsample.uniformLocation("uTargetSize"), size, size);
-        const GLuint groups =
-            static_cast<GLuint>((size + shared::kRSMDownsampleGroupSize - 1) / shared::kRSMDownsampleGroupSize);
-        glDispatchCompute(groups, groups, static_cast<GLuint>(layerCount()));
-        // The next level reads this one through image loads.
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glProgramUniform2i(mDownsample.program().id(), mDownsample.program().uniformLocation("uTargetSize"), size,
+                           size);
+        mDownsample.program().set("uSourceLevel", level - 1);
+        // The next level reads this one with texelFetch; after the last, consumers sample the mips,
+        // read them back or load them as images.
+        const NextRead next = level + 1 < mLevels
+                                  ? NextRead::TextureFetch
+                                  : NextRead::TextureFetch | NextRead::TextureReadback | NextRead::Image;
+        mDownsample.dispatch(glm::ivec3(size, size, layerCount()), next);
     }
-    // Consumers sample the mips or read them back.
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glUseProgram(0);
 }
 
 } // namespace vplgi

@@ -30,8 +30,10 @@
 //  Flux per texel (MATH.md 1.5). Spot: I(w) dw_t with dw_t = 4/(P00 P11 W H) cos^3(alpha), alpha
 //  the texel ray's angle to the axis (the texel's solid angle); directional: E * 4/(P00 P11 W H),
 //  the texel's area across the beam. Surfaces take all the flux of their texel: no cosine here.
-//  Mips (rsm_downsample.comp, one dispatch per level, level l+1 from l). Coverage and flux are
-//  plain 2x2 means, so level l holds per-texel averages (MATH.md 5.2 reads Phi_h as one) and
+//  Mips (rsm_downsample.comp through ComputePass, one dispatch per level: level l read with
+//  texelFetch, level l+1 written as images, six image uniforms within the GL minimum of eight).
+//  Coverage and flux are plain 2x2 means, so level l holds per-texel averages (MATH.md 5.2 reads
+//  Phi_h as one) and
 //  4^l * sum(level l flux) is the total. Everything else is the mean over the level-0 texels below
 //  weighted by their flux sum r+g+b (coverage x flux: empty and unlit texels weigh 0); where the
 //  block holds no flux at all, weighted by coverage; where it holds no surface, 0. A 2x2 mean with
@@ -60,6 +62,7 @@
 #include "../api/render_target.h"
 #include "../api/shader_loader.h"
 #include "../gpu_scene.h"
+#include "compute_pass.h"
 #include "core/direct_lights.h"
 
 namespace vplgi {
@@ -104,7 +107,7 @@ public:
 
 private:
     gl::Program mProgram;
-    gl::Program mDownsample;
+    ComputePass mDownsample;
     gl::RenderTarget mTarget;
     std::vector<RSMView> mViews;
     int mLevels = 0;

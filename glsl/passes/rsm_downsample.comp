@@ -11,10 +11,13 @@
 
 layout(local_size_x = kRSMDownsampleGroupSize, local_size_y = kRSMDownsampleGroupSize, local_size_z = 1) in;
 
-layout(rgba32f, binding = kImageRSMSource) readonly uniform image2DArray uSource[kRSMAttachmentCount];
+// Level l is read with texelFetch and level l+1 written as images: six image uniforms, within
+// the GL minimum of eight (GL_MAX_COMPUTE_IMAGE_UNIFORMS) that some drivers do not exceed.
+layout(binding = kUnitRSMSource) uniform sampler2DArray uSource[kRSMAttachmentCount];
 layout(rgba32f, binding = kImageRSMTarget) writeonly uniform image2DArray uTarget[kRSMAttachmentCount];
 
 uniform ivec2 uTargetSize; // level l+1 size; level l is exactly twice (power-of-two RSMs)
+uniform int uSourceLevel;  // l
 
 void main()
 {
@@ -30,8 +33,8 @@ void main()
     vec4 flux[4];
     vec4 normal[4];
     for (int i = 0; i < 4; ++i) {
-        flux[i] = imageLoad(uSource[kRSMFlux], child[i]);
-        normal[i] = imageLoad(uSource[kRSMNormal], child[i]);
+        flux[i] = texelFetch(uSource[kRSMFlux], child[i], uSourceLevel);
+        normal[i] = texelFetch(uSource[kRSMNormal], child[i], uSourceLevel);
     }
     float weight[4];
     float total = 0.0;
@@ -59,7 +62,7 @@ void main()
     for (int a = 0; a < kRSMAttachmentCount; ++a) {
         if (a == kRSMFlux || a == kRSMNormal) continue;
         vec4 sum = vec4(0.0);
-        for (int i = 0; i < 4; ++i) sum += weight[i] * imageLoad(uSource[a], child[i]);
+        for (int i = 0; i < 4; ++i) sum += weight[i] * texelFetch(uSource[a], child[i], uSourceLevel);
         imageStore(uTarget[a], texel, sum * scale);
     }
 }
