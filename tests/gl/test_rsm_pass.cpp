@@ -12,6 +12,8 @@
 #include <memory>
 #include <vector>
 
+#include "core/error.h"
+#include "core/params.h"
 #include "gl/gpu_scene.h"
 #include "gl/passes/rsm_pass.h"
 #include "gl_test_context.h"
@@ -405,4 +407,24 @@ TEST_CASE("RSM mips are bit-identical over runs", "[rsm]")
         out << std::hex << a << "\n";
         REQUIRE(out.good());
     }
+}
+
+TEST_CASE("rsm.size is set through visitParams and must be a power of two", "[rsm]")
+{
+    RSMParams params;
+    CHECK(params.size == 256);
+    ParamSetter setter(Settings{{"rsm.size", "96"}});
+    params.visitParams(setter);
+    setter.finish();
+    CHECK(params.size == 96);
+    Scene scene = planeScene(-1.0f, 1.0f, -1.0f, 1.0f, 0.0f, 0.5f);
+    scene.lights.push_back(spotDown({0.0f, 1.0f, 0.0f}, 1.0f, 0.3f, 0.4f));
+    test::ensureGLContext();
+    GpuScene gpuScene(scene);
+    RSMPass pass(test::shaders());
+    CHECK_THROWS_AS(pass.render(gpuScene, buildDirectLights(scene, DirectLightParams{}), params), Error);
+    params.size = 32;
+    pass.render(gpuScene, buildDirectLights(scene, DirectLightParams{}), params);
+    CHECK(pass.levelCount() == 6);
+    CHECK(pass.target().width() == 32);
 }
