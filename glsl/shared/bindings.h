@@ -21,6 +21,7 @@ VPLGI_CONST int kBindingImportanceSamples = 8;   // SSBO ImportanceSample[]
 
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
+VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)
 
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;
@@ -35,6 +36,7 @@ VPLGI_CONST int kUnitPointShadows = 8;
 VPLGI_CONST int kUnitDirectionalShadows = 9;
 VPLGI_CONST int kUnitDirect = 10;
 VPLGI_CONST int kUnitIndirect = 11;
+VPLGI_CONST int kUnitRSMSource = 12; // 6 units: RSM level l per attachment (passes/rsm_downsample.comp)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target

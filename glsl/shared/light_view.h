@@ -350,6 +350,25 @@ VPLGI_FUNC float paraboloidTexelSolidAngle(ivec2 texel, int resolution)
            paraboloidSolidAngleSpan(c4, s1, t0, t1);
 }
 
+// --- Spot lights (RSM) ---------------------------------------------------------------------------
+
+// viewFromWorld of a spot light at `position` emitting along the unit `axis`: looks down the axis,
+// with the same choice of "up" as the directional view.
+VPLGI_FUNC mat4 lightViewSpotViewFromWorld(vec3 position, vec3 axis)
+{
+    vec3 up = abs(axis.y) < 0.99f ? vec3(0.0f, 1.0f, 0.0f) : vec3(1.0f, 0.0f, 0.0f);
+    return lightViewLookAt(position, position + axis, up);
+}
+
+// Square symmetric frustum whose half-angle across x and y is `halfAngle` [rad] (< pi/2): the cone
+// of that half-angle is inscribed in it, so a spot's whole cone is seen when halfAngle is its
+// outer angle. The near-plane window is +-zNear tan(halfAngle).
+VPLGI_FUNC mat4 lightViewSpotClipFromView(float halfAngle, float zNear, float zFar)
+{
+    float extent = zNear * tan(halfAngle);
+    return lightViewFrustum(-extent, extent, -extent, extent, zNear, zFar);
+}
+
 // --- Directional lights --------------------------------------------------------------------------
 
 // viewFromWorld of a directional light travelling along `direction`, seen from 2 * radius before

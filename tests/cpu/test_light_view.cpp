@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "glsl/shared/light_view.h"
+#include "measured.h"
 
 using namespace vplgi;
 using namespace vplgi::shared;
@@ -476,4 +477,43 @@ TEST_CASE("light view: the directional fit holds the box and is today's ShadowPa
         CHECK(std::abs(a.y - b.y) < 1e-5f);
         CHECK(b.z > a.z);
     }
+}
+
+TEST_CASE("spot view: the axis at the centre, the outer cone inscribed in the square", "[light_view][numbers]")
+{
+    float worstRim = 0.0f;
+    const float halfAngle = 0.5f;
+    const glm::vec3 position(0.3f, 2.0f, -0.7f);
+    Uniform u(11);
+    for (int trial = 0; trial < 8; ++trial) {
+        const glm::vec3 axis = randomDirection(u);
+        const glm::mat4 viewFromWorld = lightViewSpotViewFromWorld(position, axis);
+        const glm::mat4 clipFromWorld = lightViewSpotClipFromView(halfAngle, 0.1f, 10.0f) * viewFromWorld;
+        auto ndc = [&](glm::vec3 world) {
+            const glm::vec4 clip = clipFromWorld * glm::vec4(world, 1.0f);
+            return glm::vec3(clip) / clip.w;
+        };
+        const glm::vec3 centre = ndc(position + 3.0f * axis);
+        CHECK(std::abs(centre.x) < 1e-5f);
+        CHECK(std::abs(centre.y) < 1e-5f);
+        // The view's right and up axes (rows of the rotation) are orthogonal to the axis.
+        const glm::vec3 right(viewFromWorld[0][0], viewFromWorld[1][0], viewFromWorld[2][0]);
+        const glm::vec3 up(viewFromWorld[0][1], viewFromWorld[1][1], viewFromWorld[2][1]);
+        CHECK(std::abs(glm::dot(right, axis)) < 1e-6f);
+        CHECK(std::abs(glm::dot(up, axis)) < 1e-6f);
+        // Cone rim directions land on the unit circle in NDC x, y: the circle inscribed in the
+        // square (it touches the edge midpoints along right and up).
+        for (int k = 0; k < 16; ++k) {
+            const float phi = 2.0f * static_cast<float>(kPi) * static_cast<float>(k) / 16.0f;
+            const glm::vec3 rim =
+                std::cos(halfAngle) * axis + std::sin(halfAngle) * (std::cos(phi) * right + std::sin(phi) * up);
+            const glm::vec3 p = ndc(position + 2.0f * rim);
+            worstRim = std::max(worstRim, std::abs(glm::length(glm::vec2(p)) - 1.0f));
+            CHECK(p.z > -1.0f);
+            CHECK(p.z < 1.0f);
+        }
+    }
+    MEASURED("spot view: worst | |ndc.xy| - 1 | on the cone rim " << worstRim);
+    // Measured 6.0e-7 (float rounding of tan, the rim direction and the projection); 1.5e-6 is 2.5x.
+    CHECK(worstRim < 1.5e-6f);
 }

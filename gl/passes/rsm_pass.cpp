@@ -1,0 +1,168 @@
+#include "rsm_pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/params.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/light_view.h"
+#include "glsl/shared/rsm.h"
+
+namespace vplgi {
+
+void RSMParams::visitParams(ParamVisitor& v)
+{
+    v.field("rsm.size", size, 2, 4096, "RSM resolution per spot/directional light [texels], a power of two");
+}
+
+namespace {
+
+gl::Program loadProgram(const gl::ShaderLoader& shaders)
+{
+    return shaders.load("rsm", {{GL_VERTEX_SHADER, "passes/rsm.vert"}, {GL_FRAGMENT_SHADER, "passes/rsm.frag"}});
+}
+
+bool isPowerOfTwo(int n)
+{
+    return n > 0 && (n & (n - 1)) == 0;
+}
+
+float texelFactor(const glm::mat4& clipFromView, int size)
+{
+    const float texels = static_cast<float>(size) * static_cast<float>(size);
+    return 4.0f / (clipFromView[0][0] * clipFromView[1][1] * texels);
+}
+
+} // namespace
+
+RSMPass::RSMPass(const gl::ShaderLoader& shaders)
+    : mProgram(loadProgram(shaders)), mDownsample(shaders, "rsm downsample", "passes/rsm_downsample.comp")
+{
+    gl::RenderTargetDesc desc;
+    desc.colorFormats.assign(shared::kRSMAttachmentCount, GL_RGBA32F);
+    desc.colorNames = {"position", "normal", "flux", "diffuse", "specular", "lobe"};
+    desc.depthFormat = GL_DEPTH_COMPONENT32F;
+    desc.textureTarget = GL_TEXTURE_2D_ARRAY;
+    desc.levels = 0;
+    mTarget = gl::RenderTarget("rsm", desc);
+}
+
+void RSMPass::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    mProgram = loadProgram(shaders);
+    mDownsample.reloadShaders(shaders);
+}
+
+std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet& lights, int size)
+{
+    const glm::vec3 lower = bounds.empty() ? glm::vec3(0.0f) : bounds.lower;
+    const glm::vec3 upper = bounds.empty() ? glm::vec3(0.0f) : bounds.upper;
+    const float diagonal = std::max(1e-3f, glm::length(upper - lower));
+    std::vector<RSMView> views;
+    for (std::size_t i = 0; i < lights.points.size(); ++i) {
+        const shared::PointEmitter& e = lights.points[i];
+        if (static_cast<int>(e.positionProfile.w + 0.5f) != shared::kProfileSpot) continue;
+        const glm::vec3 position(e.positionProfile);
+        const glm::vec3 axis = glm::normalize(glm::vec3(e.axisCosOuter));
+        const float halfAngle = std::min(std::acos(std::clamp(e.axisCosOuter.w, -1.0f, 1.0f)), kRSMMaxSpotHalfAngle);
+        // Far: past the farthest bounds corner; near: a fixed fraction of it (DEPTH32F has the
+        // precision for 1e-4).
+        float farthest = 0.0f;
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner((c & 1) ? upper.x : lower.x, (c & 2) ? upper.y : lower.y,
+                                   (c & 4) ? upper.z : lower.z);
+            farthest = std::max(farthest, glm::length(corner - position));
+        }
+        const float zFar = 1.01f * std::max(farthest, diagonal * 1e-3f);
+        RSMView view;
+        view.kind = shared::kRSMLightSpot;
+        view.emitter = static_cast<int>(i);
+        view.viewFromWorld = shared::lightViewSpotViewFromWorld(position, axis);
+        view.clipFromView = shared::lightViewSpotClipFromView(halfAngle, 1e-4f * zFar, zFar);
+        views.push_back(view);
+    }
+    for (std::size_t i = 0; i < lights.directionals.size(); ++i) {
+        // lightViewDirectionalFit's sphere, kept in its two factors for the texel area.
+        const glm::vec3 center = 0.5f * (lower + upper);
+        const float radius = 0.5f * diagonal * 1.01f;
+        RSMView view;
+        view.kind = shared::kRSMLightDirectional;
+        view.emitter = static_cast<int>(i);
+        view.viewFromWorld =
+            shared::lightViewDirectionalViewFromWorld(glm::vec3(lights.directionals[i].direction), center, radius);
+        view.clipFromView = shared::lightViewDirectionalClipFromView(radius);
+        views.push_back(view);
+    }
+    for (RSMView& view : views) {
+        view.clipFromWorld = view.clipFromView * view.viewFromWorld;
+        view.texelFactor = texelFactor(view.clipFromView, size);
+    }
+    return views;
+}
+
+void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params)
+{
+    require(isPowerOfTwo(params.size), "rsm.size must be a power of two, not " + std::to_string(params.size));
+    mViews = makeViews(scene.scene().worldBounds(), lights, params.size);
+    if (mViews.empty()) return;
+    glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "rsm");
+    mTarget.resize(params.size, params.size, layerCount());
+    mLevels = 1 + static_cast<int>(std::log2(static_cast<double>(params.size)) + 0.5);
+    mTarget.bindForDrawing();
+    mTarget.clear(glm::vec4(0.0f), 1.0f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(mProgram.id());
+    for (int layer = 0; layer < layerCount(); ++layer) {
+        const RSMView& view = mViews[static_cast<std::size_t>(layer)];
+        mProgram.set("uLayer", layer);
+        mProgram.set("uClipFromWorld", view.clipFromWorld);
+        mProgram.set("uLightKind", view.kind);
+        mProgram.set("uTexelFactor", view.texelFactor);
+        if (view.kind == shared::kRSMLightSpot) {
+            const shared::PointEmitter& e = lights.points[static_cast<std::size_t>(view.emitter)];
+            mProgram.set("uLightPosition", glm::vec4(glm::vec3(e.positionProfile), 1.0f));
+            mProgram.set("uLightDirection", glm::vec4(glm::normalize(glm::vec3(e.axisCosOuter)), 0.0f));
+            mProgram.set("uLightPower", glm::vec4(glm::vec3(e.intensity), 0.0f));
+            mProgram.set("uLightCone", glm::vec4(e.axisCosOuter.w, e.cosInner.x, 0.0f, 0.0f));
+        } else {
+            const shared::DirectionalEmitter& d = lights.directionals[static_cast<std::size_t>(view.emitter)];
+            mProgram.set("uLightPosition", glm::vec4(0.0f));
+            mProgram.set("uLightDirection", glm::vec4(glm::normalize(glm::vec3(d.direction)), 0.0f));
+            mProgram.set("uLightPower", glm::vec4(glm::vec3(d.irradiance), 0.0f));
+            mProgram.set("uLightCone", glm::vec4(0.0f));
+        }
+        scene.draw(mProgram, GpuScene::Bind::GeometryAndMaterial);
+    }
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    downsample();
+    glPopDebugGroup();
+}
+
+void RSMPass::downsample()
+{
+    for (int level = 1; level < mLevels; ++level) {
+        const int size = std::max(1, mTarget.width() >> level);
+        // Level l through texelFetch (no sampler object: texelFetch ignores filtering), level l+1 as
+        // images; different levels of one texture are different memory.
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+            glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), mTarget.color(a).id());
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+            bindImage(shared::kImageRSMTarget + a, mTarget.color(a), GL_WRITE_ONLY, level);
+        }
+        glProgramUniform2i(mDownsample.program().id(), mDownsample.program().uniformLocation("uTargetSize"), size,
+                           size);
+        mDownsample.program().set("uSourceLevel", level - 1);
+        // The next level reads this one with texelFetch; after the last, consumers sample the mips,
+        // read them back or load them as images.
+        const NextRead next = level + 1 < mLevels
+                                  ? NextRead::TextureFetch
+                                  : NextRead::TextureFetch | NextRead::TextureReadback | NextRead::Image;
+        mDownsample.dispatch(glm::ivec3(size, size, layerCount()), next);
+    }
+}
+
+} // namespace vplgi

@@ -1,0 +1,116 @@
+// Reflective shadow maps (RSMs) with mips, for the RSM-based techniques (VSGL, BRSM, LightSkin).
+//
+// Intro
+// -----
+// An RSM is the scene rasterised from a light: every texel is a surface element the light hits
+// first, with what a virtual point light (VPL) made from it needs. VSGL (papers/002, Sec. 3.2)
+// samples texels by importance and reads the values from a mip level chosen by the sample density
+// (MATH.md 5.2), so the mips must be filtered averages of the texels' contents, not of the image.
+//
+// Overview
+// --------
+//  render()     one layer of a 2D-array target per spot light and per directional light (spots
+//               first, in DirectLightSet order, then directionals); point lights without a cone
+//               and emissive samples get no RSM (see "Point lights" below). Then the mips.
+//  Attachments  (glsl/shared/rsm.h; all RGBA32F, size rsm.size^2, full mip chain)
+//               position  xyz world position [m], w |x|^2 (VSGL's "squared norm"; MATH.md 5.3)
+//               normal    xyz shading normal, w coverage (1 where a surface was rasterised)
+//               flux      rgb reflected flux of the texel [W]: the light's flux through the texel
+//                         times the diffuse reflectance (MATH.md 1.5), i.e. a diffuse VPL's flux
+//               diffuse   rgb (1 - metallic) baseColor
+//               specular  rgb F0 = mix(0.04 specular, baseColor, metallic), w perceptual roughness
+//               lobe      xyz the reflection lobe of the light's direction as a Toksvig vector
+//                         (eta/(1+eta)) xi (MATH.md 4.6-4.8); its mean over texels keeps the spread
+//
+// Details
+// -------
+//  Views. Spot: a square perspective frustum down the axis whose half-angle is the outer cone
+//  angle, capped at kRSMMaxSpotHalfAngle (light_view.h lightViewSpot*); near/far from the scene
+//  bounds. Directional: lightViewDirectionalFit (the same orthographic view as its shadow map).
+//  Flux per texel (MATH.md 1.5). Spot: I(w) dw_t with dw_t = 4/(P00 P11 W H) cos^3(alpha), alpha
+//  the texel ray's angle to the axis (the texel's solid angle); directional: E * 4/(P00 P11 W H),
+//  the texel's area across the beam. Surfaces take all the flux of their texel: no cosine here.
+//  Mips (rsm_downsample.comp through ComputePass, one dispatch per level: level l read with
+//  texelFetch, level l+1 written as images, six image uniforms within the GL minimum of eight).
+//  Coverage and flux are plain 2x2 means, so level l holds per-texel averages (MATH.md 5.2 reads
+//  Phi_h as one) and
+//  4^l * sum(level l flux) is the total. Everything else is the mean over the level-0 texels below
+//  weighted by their flux sum r+g+b (coverage x flux: empty and unlit texels weigh 0); where the
+//  block holds no flux at all, weighted by coverage; where it holds no surface, 0. A 2x2 mean with
+//  the children's flux means as weights is exactly that (all children cover equally many level-0
+//  texels: RSM sizes are powers of two). Normals and lobes are not renormalised: the normal's
+//  length is the Toksvig factor |N_a| (MATH.md 4.8), 1 on a flat surface. Each target texel is one
+//  invocation summing its children in a fixed order: bit-identical across runs and thread counts.
+//  Point lights: not rendered. They need six cube faces (or two paraboloids) per light, i.e. six
+//  layers with their own texel solid angles; no technique asks for them yet.
+//  Precision: positions are absolute world coordinates; |x|^2 - |E[x]|^2 loses digits far from the
+//  origin (MATH.md 5.3 float32 caution). A consumer that needs the variance far away should store
+//  positions relative to the light instead.
+//
+// References
+// ----------
+//  C. Dachsbacher, M. Stamminger: Reflective Shadow Maps, I3D 2005.
+//  Y. Tokuyoshi: Virtual Spherical Gaussian Lights for Real-Time Glossy Indirect Illumination
+//    (papers/002), Sec. 3.2: RSM contents and filtered importance sampling.
+//  M. Toksvig: Mipmapping Normal Maps, 2005 (MATH.md 4.8).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "../api/render_target.h"
+#include "../api/shader_loader.h"
+#include "../gpu_scene.h"
+#include "compute_pass.h"
+#include "core/direct_lights.h"
+
+namespace vplgi {
+
+class ParamVisitor;
+
+struct RSMParams {
+    int size = 256; // RSM resolution per light [texels], a power of two
+    void visitParams(ParamVisitor& visitor);
+};
+
+// The widest spot frustum: cones wider than this lose their rim (the frustum grows as tan).
+constexpr float kRSMMaxSpotHalfAngle = 1.4835299f; // 85 degrees
+
+// What layer i of the RSM was rendered for.
+struct RSMView {
+    int kind = 0;    // shared::kRSMLightSpot / kRSMLightDirectional
+    int emitter = 0; // index in DirectLightSet::points / ::directionals
+    glm::mat4 viewFromWorld{1.0f};
+    glm::mat4 clipFromView{1.0f};
+    glm::mat4 clipFromWorld{1.0f};
+    float texelFactor = 0.0f; // 4/(P00 P11 W H): on-axis texel solid angle [sr] or area [m^2]
+};
+
+class RSMPass {
+public:
+    explicit RSMPass(const gl::ShaderLoader& shaders);
+    void reloadShaders(const gl::ShaderLoader& shaders);
+    // Renders every spot and directional light's RSM and its mips. Throws Error when params.size is
+    // not a power of two. With no such light, nothing is drawn and layerCount() is 0.
+    void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params);
+    // Recomputes levels 1.. from level 0 (render() calls it; public for the tests).
+    void downsample();
+
+    const gl::RenderTarget& target() const { return mTarget; }
+    const std::vector<RSMView>& views() const { return mViews; }
+    int layerCount() const { return static_cast<int>(mViews.size()); }
+    int levelCount() const { return mLevels; }
+
+    // The views render() would use (CPU only; shared with the tests' CPU rasterisation).
+    static std::vector<RSMView> makeViews(const AABB& bounds, const DirectLightSet& lights, int size);
+
+private:
+    gl::Program mProgram;
+    ComputePass mDownsample;
+    gl::RenderTarget mTarget;
+    std::vector<RSMView> mViews;
+    int mLevels = 0;
+};
+
+} // namespace vplgi

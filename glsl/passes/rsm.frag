@@ -1,0 +1,93 @@
+#version 450 core
+// RSM texel: world position (+ |x|^2), normal + coverage, reflected flux, diffuse and specular
+// reflectance, specular lobe (gl/passes/rsm_pass.h). The material is evaluated as in
+// passes/gbuffer.frag (and core/surface.cpp), so the RSM sees the surface the camera sees.
+#include "../shared/lights.h"
+#include "../shared/rsm.h"
+#include "../shared/bindings.h"
+
+layout(location = 0) in vec3 vWorldPosition;
+layout(location = 1) in vec3 vNormal;
+layout(location = 2) in vec2 vTexcoord;
+layout(location = 3) in vec4 vTangent;
+
+layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTexture;         // sRGB format
+layout(binding = kUnitMetallicRoughness) uniform sampler2D uMetallicRoughnessTexture;
+layout(binding = kUnitNormalMap) uniform sampler2D uNormalTexture;
+
+uniform vec4 uBaseColor;
+uniform vec4 uMaterial;   // x metallic, y roughness, z specular, w normal scale
+uniform ivec4 uTextures;  // x normal map present (with tangents), y double-sided
+
+uniform int uLightKind;          // kRSMLightSpot / kRSMLightDirectional
+uniform vec4 uLightPosition;     // spot: xyz position [m]
+uniform vec4 uLightDirection;    // spot: axis; directional: direction light travels (unit)
+uniform vec4 uLightPower;        // spot: peak intensity [W/sr]; directional: irradiance [W/m^2] (rgb)
+uniform vec4 uLightCone;         // spot: x cos(outer), y cos(inner)
+// 4 / (P[0][0] P[1][1] W H) of the light's projection P and the RSM size W x H: the texel's solid
+// angle on the axis, in [sr] (spot, MATH.md 1.5: w_n h_n / (W H z_n^2)), or its area [m^2]
+// (orthographic: w_o h_o / (W H)).
+uniform float uTexelFactor;
+
+layout(location = kRSMPosition) out vec4 outPosition;
+layout(location = kRSMNormal) out vec4 outNormal;
+layout(location = kRSMFlux) out vec4 outFlux;
+layout(location = kRSMDiffuse) out vec4 outDiffuse;
+layout(location = kRSMSpecular) out vec4 outSpecular;
+layout(location = kRSMLobe) out vec4 outLobe;
+
+void main()
+{
+    vec3 n = normalize(vNormal);
+    if (uTextures.x != 0) {
+        vec3 t = normalize(vTangent.xyz);
+        t = normalize(t - n * dot(n, t));
+        vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+        vec3 tn = texture(uNormalTexture, vTexcoord).xyz * 2.0 - 1.0;
+        tn.xy *= uMaterial.w;
+        n = normalize(t * tn.x + b * tn.y + n * tn.z);
+    }
+    if (uTextures.y != 0 && !gl_FrontFacing) n = -n;
+
+    vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);
+    vec4 mr = texture(uMetallicRoughnessTexture, vTexcoord);
+    float metallic = uMaterial.x * mr.b;
+    float roughness = uMaterial.y * mr.g;
+    vec3 diffuse = (1.0 - metallic) * base.rgb;
+    vec3 f0 = mix(vec3(0.04 * uMaterial.z), base.rgb, metallic);
+
+    // Flux through the texel (MATH.md 1.5), towards the light `toLight`.
+    vec3 incident;
+    vec3 toLight;
+    if (uLightKind == kRSMLightSpot) {
+        vec3 fromLight = normalize(vWorldPosition - uLightPosition.xyz);
+        PointEmitter e;
+        e.positionProfile = vec4(uLightPosition.xyz, float(kProfileSpot));
+        e.intensity = uLightPower;
+        e.axisCosOuter = vec4(uLightDirection.xyz, uLightCone.x);
+        e.cosInner = vec4(uLightCone.y, 0.0, 0.0, 0.0);
+        float cosAlpha = dot(uLightDirection.xyz, fromLight);
+        // Solid angle of the texel: on-axis value times cos^3 of the ray's angle to the axis.
+        float solidAngle = uTexelFactor * cosAlpha * cosAlpha * cosAlpha;
+        incident = uLightPower.rgb * emitterProfile(e, fromLight) * solidAngle;
+        toLight = -fromLight;
+    } else {
+        incident = uLightPower.rgb * uTexelFactor;
+        toLight = -uLightDirection.xyz;
+    }
+
+    // Specular lobe: GGX NDF as an SG of sharpness 2/alpha^2 around n (MATH.md 4.6), warped to
+    // the reflection lobe about the mirror direction of toLight (4.7), stored as the Toksvig mean
+    // vector r xi with r = eta/(1+eta) (4.8, VSGL 3.2) so that mips can average it.
+    float alpha = max(roughness * roughness, 0.002);
+    float cosLight = max(abs(dot(n, toLight)), 1e-4);
+    float sharpness = (2.0 / (alpha * alpha)) / (4.0 * cosLight);
+    vec3 mirror = 2.0 * dot(n, toLight) * n - toLight;
+
+    outPosition = vec4(vWorldPosition, dot(vWorldPosition, vWorldPosition));
+    outNormal = vec4(n, 1.0);
+    outFlux = vec4(diffuse * incident, 0.0);
+    outDiffuse = vec4(diffuse, 0.0);
+    outSpecular = vec4(f0, roughness);
+    outLobe = vec4(sharpness / (1.0 + sharpness) * mirror, 0.0);
+}
