@@ -19,6 +19,10 @@ VPLGI_CONST int kBindingImportanceColumns = 6;   // SSBO float[W*H]: column pref
 VPLGI_CONST int kBindingImportanceMarginal = 7;  // SSBO float[W]: prefix sums of column totals R(u)
 VPLGI_CONST int kBindingImportanceSamples = 8;   // SSBO ImportanceSample[]
 
+// Storage buffers of the shadow atlas (gl/passes/shadow_atlas).
+VPLGI_CONST int kBindingShadowAtlasMatrices = 9; // SSBO mat4[] (clipFromWorld per shadow-atlas tile index)
+VPLGI_CONST int kBindingShadowAtlasDraw = 10;    // SSBO int[] (tile index per instance of a ShadowAtlas draw)
+
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
 VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)
@@ -37,6 +41,7 @@ VPLGI_CONST int kUnitDirectionalShadows = 9;
 VPLGI_CONST int kUnitDirect = 10;
 VPLGI_CONST int kUnitIndirect = 11;
 VPLGI_CONST int kUnitRSMSource = 12; // 6 units: RSM level l per attachment (passes/rsm_downsample.comp)
+VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), after the RSM units 12..17
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
