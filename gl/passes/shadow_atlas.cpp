@@ -21,8 +21,8 @@ bool isPowerOfTwo(int n)
 
 gl::Program loadProgram(const gl::ShaderLoader& shaders, const std::string& name)
 {
-    return shaders.load(name, {{GL_VERTEX_SHADER, "passes/shadow_atlas.vert"},
-                               {GL_FRAGMENT_SHADER, "passes/shadow_atlas.frag"}});
+    return shaders.load(
+        name, {{GL_VERTEX_SHADER, "passes/shadow_atlas.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_atlas.frag"}});
 }
 
 constexpr double kBytesPerTexel = 4.0; // DEPTH32F
@@ -38,8 +38,8 @@ ShadowAtlasLayout ShadowAtlas::chooseLayout(const std::string& name, const Shado
             prefix + "tileSize, slots and viewsPerSlot must be positive (got " + std::to_string(params.tileSize) +
                 ", " + std::to_string(params.slots) + ", " + std::to_string(params.viewsPerSlot) + ")");
     require(params.tilesPerRow == 0 || isPowerOfTwo(params.tilesPerRow),
-            prefix + "tilesPerRow must be 0 (automatic) or a power of two (got " +
-                std::to_string(params.tilesPerRow) + ")");
+            prefix + "tilesPerRow must be 0 (automatic) or a power of two (got " + std::to_string(params.tilesPerRow) +
+                ")");
     const std::int64_t tiles = static_cast<std::int64_t>(params.slots) * params.viewsPerSlot;
     const std::string what = std::to_string(params.slots) + " slots x " + std::to_string(params.viewsPerSlot) +
                              " views = " + std::to_string(tiles) + " tiles of " + std::to_string(params.tileSize) +
@@ -49,20 +49,22 @@ ShadowAtlasLayout ShadowAtlas::chooseLayout(const std::string& name, const Shado
     const int maxPerRow = maxTextureSize / params.tileSize;
     int perRow = 1;
     if (params.tilesPerRow > 0) {
-        require(params.tilesPerRow <= maxPerRow,
-                prefix + "tilesPerRow " + std::to_string(params.tilesPerRow) + " x tileSize " +
-                    std::to_string(params.tileSize) + " exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxTextureSize));
+        require(params.tilesPerRow <= maxPerRow, prefix + "tilesPerRow " + std::to_string(params.tilesPerRow) +
+                                                     " x tileSize " + std::to_string(params.tileSize) +
+                                                     " exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxTextureSize));
         perRow = params.tilesPerRow;
     } else {
         // The smallest power of two whose layers hold every tile (small layers leave less of the
         // last layer empty).
-        while (static_cast<std::int64_t>(perRow) * perRow * maxLayers < tiles && perRow * 2 <= maxPerRow) perRow *= 2;
+        while (static_cast<std::int64_t>(perRow) * perRow * maxLayers < tiles && perRow * 2 <= maxPerRow)
+            perRow *= 2;
     }
     const std::int64_t perLayer = static_cast<std::int64_t>(perRow) * perRow;
     const std::int64_t layers = (tiles + perLayer - 1) / perLayer;
     require(layers <= maxLayers && tiles <= std::numeric_limits<int>::max(),
-            prefix + what + " do not fit: at most " + std::to_string(perRow) + "^2 tiles per layer (GL_MAX_TEXTURE_SIZE " +
-                std::to_string(maxTextureSize) + ") x " + std::to_string(maxLayers) +
+            prefix + what + " do not fit: at most " + std::to_string(perRow) +
+                "^2 tiles per layer (GL_MAX_TEXTURE_SIZE " + std::to_string(maxTextureSize) + ") x " +
+                std::to_string(maxLayers) +
                 " layers (GL_MAX_ARRAY_TEXTURE_LAYERS) = " + std::to_string(perLayer * maxLayers) + " tiles");
     ShadowAtlasLayout layout;
     layout.tileSize = params.tileSize;
@@ -74,8 +76,8 @@ ShadowAtlasLayout ShadowAtlas::chooseLayout(const std::string& name, const Shado
     require(layout.memoryMiB <= params.memoryBudgetMiB,
             prefix + what + " need " + std::to_string(static_cast<long long>(layout.memoryMiB + 0.5)) + " MiB (" +
                 std::to_string(layout.layers) + " layers of " + std::to_string(layout.layerSize) +
-                "^2 DEPTH32F), over the budget of " +
-                std::to_string(static_cast<long long>(params.memoryBudgetMiB)) + " MiB");
+                "^2 DEPTH32F), over the budget of " + std::to_string(static_cast<long long>(params.memoryBudgetMiB)) +
+                " MiB");
     return layout;
 }
 
@@ -100,10 +102,10 @@ ShadowAtlas::ShadowAtlas(const gl::ShaderLoader& shaders, std::string name, cons
     while (glGetError() != GL_NO_ERROR) {
     }
     mTarget.resize(mLayout.layerSize, mLayout.layerSize, mLayout.layers);
-    require(glGetError() != GL_OUT_OF_MEMORY,
-            "shadow atlas " + mName + ": the driver could not allocate " +
-                std::to_string(static_cast<long long>(mLayout.memoryMiB + 0.5)) + " MiB (" +
-                std::to_string(mLayout.layers) + " layers of " + std::to_string(mLayout.layerSize) + "^2 DEPTH32F)");
+    require(glGetError() != GL_OUT_OF_MEMORY, "shadow atlas " + mName + ": the driver could not allocate " +
+                                                  std::to_string(static_cast<long long>(mLayout.memoryMiB + 0.5)) +
+                                                  " MiB (" + std::to_string(mLayout.layers) + " layers of " +
+                                                  std::to_string(mLayout.layerSize) + "^2 DEPTH32F)");
     mTarget.clear(); // depth 1 everywhere: a tile never rendered shadows nothing
 
     mMatrices.assign(static_cast<std::size_t>(mLayout.tileCount), glm::mat4(1.0f));
@@ -133,13 +135,14 @@ void ShadowAtlas::renderDirty(const GpuScene& scene, const std::vector<std::uint
         const std::uint32_t slot = slots[i];
         require(slot < static_cast<std::uint32_t>(mParams.slots) && !seen[slot],
                 "shadow atlas " + mName + ": renderDirty slot " + std::to_string(slot) +
-                    (slot < static_cast<std::uint32_t>(mParams.slots) ? " given twice"
-                                                                      : " out of range (slots: " +
-                                                                            std::to_string(mParams.slots) + ")"));
+                    (slot < static_cast<std::uint32_t>(mParams.slots)
+                         ? " given twice"
+                         : " out of range (slots: " + std::to_string(mParams.slots) + ")"));
         seen[slot] = 1;
         for (int v = 0; v < views; ++v) {
             const int tile = shared::shadowAtlasTileIndex(static_cast<int>(slot), v, views);
-            mMatrices[static_cast<std::size_t>(tile)] = clipFromWorldPerSlotView[i * views + static_cast<std::size_t>(v)];
+            mMatrices[static_cast<std::size_t>(tile)] =
+                clipFromWorldPerSlotView[i * views + static_cast<std::size_t>(v)];
             drawTiles.push_back(tile);
         }
     }
@@ -159,14 +162,16 @@ void ShadowAtlas::renderDirty(const GpuScene& scene, const std::vector<std::uint
     mTarget.bindForDrawing();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    for (GLenum plane = 0; plane < 4; ++plane) glEnable(GL_CLIP_DISTANCE0 + plane);
+    for (GLenum plane = 0; plane < 4; ++plane)
+        glEnable(GL_CLIP_DISTANCE0 + plane);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowAtlasMatrices, mMatrixBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowAtlasDraw, mDrawTiles.id());
     glUseProgram(mProgram.id());
     mProgram.set("uTilesPerRow", mLayout.tilesPerRow);
     scene.draw(mProgram, GpuScene::Bind::Geometry, static_cast<GLsizei>(drawTiles.size()));
     glUseProgram(0);
-    for (GLenum plane = 0; plane < 4; ++plane) glDisable(GL_CLIP_DISTANCE0 + plane);
+    for (GLenum plane = 0; plane < 4; ++plane)
+        glDisable(GL_CLIP_DISTANCE0 + plane);
     glDisable(GL_DEPTH_TEST);
 }
 
@@ -180,7 +185,8 @@ void ShadowAtlas::clearTiles(const std::vector<int>& sortedTiles) const
     const GLuint texture = mTarget.depth().id();
     for (std::size_t i = 0; i < sortedTiles.size();) {
         std::size_t end = i + 1;
-        while (end < sortedTiles.size() && sortedTiles[end] == sortedTiles[end - 1] + 1) ++end;
+        while (end < sortedTiles.size() && sortedTiles[end] == sortedTiles[end - 1] + 1)
+            ++end;
         int tile = sortedTiles[i];
         const int stop = sortedTiles[end - 1] + 1;
         while (tile < stop) {

@@ -67,20 +67,20 @@
 namespace vplgi {
 
 struct ShadowAtlasParams {
-    int tileSize = 128;           // resolution of one view's map [texels]
-    int slots = 1;                // lights or VPLs with maps
-    int viewsPerSlot = 1;         // maps per slot (3 for SMCIR's hemisphere cube)
-    int tilesPerRow = 0;          // tiles across a layer, a power of two; 0 = the smallest that fits
+    int tileSize = 128;              // resolution of one view's map [texels]
+    int slots = 1;                   // lights or VPLs with maps
+    int viewsPerSlot = 1;            // maps per slot (3 for SMCIR's hemisphere cube)
+    int tilesPerRow = 0;             // tiles across a layer, a power of two; 0 = the smallest that fits
     double memoryBudgetMiB = 2048.0; // the largest texture allowed [MiB]
 };
 
 // Where the tiles are: chosen once from the parameters and the GL limits.
 struct ShadowAtlasLayout {
-    int tileSize = 0;      // [texels]
-    int tilesPerRow = 0;   // tiles across (and down) a layer
-    int layerSize = 0;     // tilesPerRow * tileSize [texels]
-    int layers = 0;        // array layers allocated
-    int tileCount = 0;     // slots * viewsPerSlot (tiles in use)
+    int tileSize = 0;       // [texels]
+    int tilesPerRow = 0;    // tiles across (and down) a layer
+    int layerSize = 0;      // tilesPerRow * tileSize [texels]
+    int layers = 0;         // array layers allocated
+    int tileCount = 0;      // slots * viewsPerSlot (tiles in use)
     double memoryMiB = 0.0; // layers * layerSize^2 * 4 bytes [MiB]
 };
 
@@ -93,8 +93,8 @@ public:
 
     // The layout for `params` under the limits GL_MAX_TEXTURE_SIZE = maxTextureSize and
     // GL_MAX_ARRAY_TEXTURE_LAYERS = maxLayers (no GL calls); throws as the constructor does.
-    static ShadowAtlasLayout chooseLayout(const std::string& name, const ShadowAtlasParams& params,
-                                          int maxTextureSize, int maxLayers);
+    static ShadowAtlasLayout chooseLayout(const std::string& name, const ShadowAtlasParams& params, int maxTextureSize,
+                                          int maxLayers);
 
     // Clears the tiles of `slots` (distinct, each < params.slots) and renders `scene` into them:
     // view v of slots[i] with clipFromWorldPerSlotView[i * viewsPerSlot + v]. Other tiles keep their
@@ -118,10 +118,10 @@ private:
     ShadowAtlasParams mParams;
     ShadowAtlasLayout mLayout;
     gl::Program mProgram;
-    gl::RenderTarget mTarget;          // depth only: DEPTH32F 2D array, mLayout.layers layers
-    std::vector<glm::mat4> mMatrices;  // clipFromWorld per tile index (CPU mirror of mMatrixBuffer)
+    gl::RenderTarget mTarget;         // depth only: DEPTH32F 2D array, mLayout.layers layers
+    std::vector<glm::mat4> mMatrices; // clipFromWorld per tile index (CPU mirror of mMatrixBuffer)
     gl::Buffer mMatrixBuffer;
-    gl::Buffer mDrawTiles;             // tile index per instance of the last draw
+    gl::Buffer mDrawTiles; // tile index per instance of the last draw
     gl::Sampler mSampler;
 };
 

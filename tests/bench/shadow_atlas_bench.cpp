@@ -36,8 +36,8 @@ std::vector<glm::mat4> randomHemisphereFaces(const Scene& scene, int slots, unsi
     const float diagonal = glm::length(box.extent());
     std::vector<glm::mat4> matrices;
     for (int s = 0; s < slots; ++s) {
-        const glm::vec3 p = box.lower + box.extent() * glm::vec3(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng),
-                                                                 0.1f + 0.8f * u(rng));
+        const glm::vec3 p =
+            box.lower + box.extent() * glm::vec3(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng));
         const float z = 2.0f * u(rng) - 1.0f, phi = 6.2831853f * u(rng);
         const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
         const glm::mat3 basis = shared::lightViewHemisphereBasis(glm::vec3(r * std::cos(phi), r * std::sin(phi), z));
@@ -48,8 +48,7 @@ std::vector<glm::mat4> randomHemisphereFaces(const Scene& scene, int slots, unsi
     return matrices;
 }
 
-template <typename F>
-double millisecondsOf(F&& work)
+template <typename F> double millisecondsOf(F&& work)
 {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
@@ -71,9 +70,12 @@ int main(int argc, char** argv)
     int repeats = 1, tilesPerRow = 0;
     std::vector<std::string> scenes = {"cornell", "maze"};
     for (int i = 1; i + 1 < argc; i += 2) {
-        if (std::strcmp(argv[i], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[i + 1]));
-        else if (std::strcmp(argv[i], "--scene") == 0) scenes = {argv[i + 1]};
-        else if (std::strcmp(argv[i], "--tiles-per-row") == 0) tilesPerRow = std::atoi(argv[i + 1]);
+        if (std::strcmp(argv[i], "--repeats") == 0)
+            repeats = std::max(1, std::atoi(argv[i + 1]));
+        else if (std::strcmp(argv[i], "--scene") == 0)
+            scenes = {argv[i + 1]};
+        else if (std::strcmp(argv[i], "--tiles-per-row") == 0)
+            tilesPerRow = std::atoi(argv[i + 1]);
         else {
             std::fprintf(stderr, "error: unknown option %s\n", argv[i]);
             return 1;
@@ -101,7 +103,8 @@ int main(int argc, char** argv)
                 ShadowAtlas atlas(shaders, name, params);
                 const std::vector<glm::mat4> matrices = randomHemisphereFaces(scene, slots, 1);
                 std::vector<std::uint32_t> all(static_cast<std::size_t>(slots));
-                for (int s = 0; s < slots; ++s) all[static_cast<std::size_t>(s)] = static_cast<std::uint32_t>(s);
+                for (int s = 0; s < slots; ++s)
+                    all[static_cast<std::size_t>(s)] = static_cast<std::uint32_t>(s);
                 atlas.renderDirty(gpuScene, all, matrices); // warm-up: shader variants, first touch of memory
                 std::vector<double> atlasTimes, perSlotTimes;
                 for (int r = 0; r < repeats; ++r) {
@@ -113,8 +116,8 @@ int main(int argc, char** argv)
                     }));
                 }
                 const double a = median(atlasTimes), p = median(perSlotTimes);
-                std::printf("%-8s %9zu %6d %6d %11.1f %14.3f %11.1f %15.2f\n", name.c_str(), scene.triangleCount(), slots,
-                            3 * slots, a, a / (3.0 * slots), p, p / a);
+                std::printf("%-8s %9zu %6d %6d %11.1f %14.3f %11.1f %15.2f\n", name.c_str(), scene.triangleCount(),
+                            slots, 3 * slots, a, a / (3.0 * slots), p, p / a);
                 std::fflush(stdout);
             }
         }

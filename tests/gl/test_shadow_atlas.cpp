@@ -105,8 +105,8 @@ std::vector<glm::mat4> hemisphereViews(const Scene& scene, int slots, int viewsP
         const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
         const glm::mat3 basis = shared::lightViewHemisphereBasis(glm::vec3(r * std::cos(phi), r * std::sin(phi), z));
         for (int v = 0; v < viewsPerSlot; ++v)
-            matrices.push_back(shared::lightViewHemisphereFaceClipFromWorld(p, basis, v % 3, 0.01f * diagonal,
-                                                                           1.5f * diagonal));
+            matrices.push_back(
+                shared::lightViewHemisphereFaceClipFromWorld(p, basis, v % 3, 0.01f * diagonal, 1.5f * diagonal));
     }
     return matrices;
 }
@@ -114,7 +114,8 @@ std::vector<glm::mat4> hemisphereViews(const Scene& scene, int slots, int viewsP
 std::vector<std::uint32_t> allSlots(int slots)
 {
     std::vector<std::uint32_t> list(static_cast<std::size_t>(slots));
-    for (int s = 0; s < slots; ++s) list[static_cast<std::size_t>(s)] = static_cast<std::uint32_t>(s);
+    for (int s = 0; s < slots; ++s)
+        list[static_cast<std::size_t>(s)] = static_cast<std::uint32_t>(s);
     return list;
 }
 
@@ -153,7 +154,8 @@ TileDifference compareWithAlone(const ShadowAtlas& atlas, const GpuScene& scene,
     for (std::size_t i = 0; i < slots.size(); ++i)
         for (int v = 0; v < views; ++v) {
             const std::vector<float> tile = readTile(atlas, static_cast<int>(slots[i]), v);
-            const TileDifference d = compare(tile, alone.render(scene, matrices[i * views + static_cast<std::size_t>(v)]));
+            const TileDifference d =
+                compare(tile, alone.render(scene, matrices[i * views + static_cast<std::size_t>(v)]));
             worst.texels = std::max(worst.texels, d.texels);
             worst.coverage += d.coverage;
             worst.largest = std::max(worst.largest, d.largest);
@@ -183,8 +185,9 @@ TEST_CASE("shadow atlas: every tile holds the depths of its view rendered alone"
     int tilesWithGeometry = 0;
     const TileDifference worst =
         compareWithAlone(atlas, gpuScene, alone, allSlots(params.slots), matrices, &tilesWithGeometry);
-    std::printf("shadow atlas vs alone (72 tiles of 64^2, cornell): at most %d texels of a tile differ, by at most %.3g\n",
-                worst.texels, static_cast<double>(worst.largest));
+    std::printf(
+        "shadow atlas vs alone (72 tiles of 64^2, cornell): at most %d texels of a tile differ, by at most %.3g\n",
+        worst.texels, static_cast<double>(worst.largest));
     CHECK(tilesWithGeometry == params.slots * params.viewsPerSlot); // inside the box every view sees a wall
 
     // The reader's side: GLSL lookups through shadowAtlasTile / shadowAtlasCoordinates (nearest
@@ -200,8 +203,9 @@ TEST_CASE("shadow atlas: every tile holds the depths of its view rendered alone"
     for (int i = 0; i < 512; ++i)
         lookups.push_back({glm::ivec4(i % params.slots, (i / params.slots) % params.viewsPerSlot, 0, 0),
                            glm::vec4(i % 7 == 0 ? 0.0f : u(rng), i % 5 == 0 ? 1.0f : u(rng), 0.0f, 0.0f)});
-    gl::Program probe = gl::ShaderLoader(std::string(VPLGI_SOURCE_DIR) + "/glsl")
-                            .load("shadow atlas probe", {{GL_COMPUTE_SHADER, "../tests/gl/glsl/shadow_atlas_probe.comp"}});
+    gl::Program probe =
+        gl::ShaderLoader(std::string(VPLGI_SOURCE_DIR) + "/glsl")
+            .load("shadow atlas probe", {{GL_COMPUTE_SHADER, "../tests/gl/glsl/shadow_atlas_probe.comp"}});
     gl::Buffer input("shadow atlas lookups", static_cast<GLsizeiptr>(lookups.size() * sizeof(Lookup)), lookups.data());
     gl::Buffer output("shadow atlas lookup results", static_cast<GLsizeiptr>(lookups.size() * sizeof(glm::vec4)));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.id());
@@ -251,7 +255,8 @@ TEST_CASE("shadow atlas: renderDirty of a subset leaves the other tiles bit-iden
     // Slots whose tiles start mid-row, span a row end and a layer end (slot 5 = tiles 15..17), and
     // the last slot; in no particular order.
     const std::vector<std::uint32_t> subset = {20, 5, 1, 6, 12};
-    const std::vector<glm::mat4> moved = hemisphereViews(scene, static_cast<int>(subset.size()), params.viewsPerSlot, 12);
+    const std::vector<glm::mat4> moved =
+        hemisphereViews(scene, static_cast<int>(subset.size()), params.viewsPerSlot, 12);
     atlas.renderDirty(gpuScene, subset, moved);
     const std::vector<float> after = readAll(atlas);
 
@@ -292,8 +297,9 @@ TEST_CASE("shadow atlas: renderDirty of a subset leaves the other tiles bit-iden
     CHECK(updatedChanged == updatedTiles); // the new views differ, so a skipped update would show
     SingleViewRenderer alone(params.tileSize);
     const TileDifference worst = compareWithAlone(atlas, gpuScene, alone, subset, moved);
-    std::printf("shadow atlas subset update vs alone (15 tiles of 32^2): at most %d texels of a tile differ, by at most %.3g\n",
-                worst.texels, static_cast<double>(worst.largest));
+    std::printf(
+        "shadow atlas subset update vs alone (15 tiles of 32^2): at most %d texels of a tile differ, by at most %.3g\n",
+        worst.texels, static_cast<double>(worst.largest));
     CHECK(worst.largest <= kDepthTolerance);
     CHECK(worst.coverage == 0);
     gl::checkDebugMessages();
@@ -332,8 +338,10 @@ TEST_CASE("shadow atlas: geometry crossing a tile's edge does not bleed into the
         for (int x = 0; x < size; ++x) {
             const bool inside = x / params.tileSize == 1 && y / params.tileSize == 1;
             const float d = depth[static_cast<std::size_t>(y) * size + static_cast<std::size_t>(x)];
-            if (inside) insideCovered += d < 1.0f ? 1 : 0;
-            else outsideWritten += d != 1.0f ? 1 : 0;
+            if (inside)
+                insideCovered += d < 1.0f ? 1 : 0;
+            else
+                outsideWritten += d != 1.0f ? 1 : 0;
         }
     CHECK(insideCovered == params.tileSize * params.tileSize);
     CHECK(outsideWritten == 0);
@@ -360,9 +368,10 @@ TEST_CASE("shadow atlas: layouts at the capacity limits, and errors that name th
     CHECK_THROWS_WITH(ShadowAtlas::chooseLayout("vpl", params, 16384, 2048),
                       "shadow atlas vpl: 8192 slots x 3 views = 24576 tiles of 128^2 texels need 1536 MiB "
                       "(1536 layers of 512^2 DEPTH32F), over the budget of 1024 MiB");
-    CHECK_THROWS_WITH(ShadowAtlas::chooseLayout("vpl", params, 256, 2048),
-                      "shadow atlas vpl: 8192 slots x 3 views = 24576 tiles of 128^2 texels do not fit: at most 2^2 "
-                      "tiles per layer (GL_MAX_TEXTURE_SIZE 256) x 2048 layers (GL_MAX_ARRAY_TEXTURE_LAYERS) = 8192 tiles");
+    CHECK_THROWS_WITH(
+        ShadowAtlas::chooseLayout("vpl", params, 256, 2048),
+        "shadow atlas vpl: 8192 slots x 3 views = 24576 tiles of 128^2 texels do not fit: at most 2^2 "
+        "tiles per layer (GL_MAX_TEXTURE_SIZE 256) x 2048 layers (GL_MAX_ARRAY_TEXTURE_LAYERS) = 8192 tiles");
     params.tilesPerRow = 3;
     CHECK_THROWS_WITH(ShadowAtlas::chooseLayout("vpl", params, 16384, 2048), Contains("power of two"));
     params.tilesPerRow = 256;
@@ -384,16 +393,18 @@ TEST_CASE("shadow atlas: layouts at the capacity limits, and errors that name th
     atlas.renderDirty(gpuScene, ends, matrices);
     SingleViewRenderer alone(big.tileSize);
     const TileDifference worst = compareWithAlone(atlas, gpuScene, alone, ends, matrices);
-    std::printf("shadow atlas of 8192 maps vs alone (4 tiles of 128^2): at most %d texels of a tile differ, by at most %.3g\n",
-                worst.texels, static_cast<double>(worst.largest));
+    std::printf(
+        "shadow atlas of 8192 maps vs alone (4 tiles of 128^2): at most %d texels of a tile differ, by at most %.3g\n",
+        worst.texels, static_cast<double>(worst.largest));
     CHECK(worst.largest <= kDepthTolerance);
     CHECK(worst.coverage == 0);
     ShadowAtlasParams impossible;
     impossible.tileSize = 4096;
     impossible.slots = 1 << 20;
     impossible.viewsPerSlot = 3;
-    CHECK_THROWS_WITH(ShadowAtlas(test::shaders(), "impossible", impossible),
-                      Contains("shadow atlas impossible: 1048576 slots x 3 views = 3145728 tiles of 4096^2 texels do not fit"));
+    CHECK_THROWS_WITH(
+        ShadowAtlas(test::shaders(), "impossible", impossible),
+        Contains("shadow atlas impossible: 1048576 slots x 3 views = 3145728 tiles of 4096^2 texels do not fit"));
     gl::checkDebugMessages();
 }
 
