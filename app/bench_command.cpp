@@ -9,9 +9,9 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "core/error.h"
-#include "core/params.h"
-#include "core/ray_scene.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "core/trace/ray_scene.h"
 #include "gl/api/context.h"
 #include "report.h"
 #include "session.h"

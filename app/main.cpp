@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/content_hash.h"
-#include "core/error.h"
+#include "core/util/content_hash.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

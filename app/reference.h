@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "core/image_io.h"
-#include "core/path_tracer.h"
+#include "core/util/image_io.h"
+#include "core/trace/path_tracer.h"
 
 namespace vplgi {
 

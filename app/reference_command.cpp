@@ -1,12 +1,12 @@
-// `vplgi reference`: the Embree path tracer (core/path_tracer.h) from the command line.
+// `vplgi reference`: the Embree path tracer (core/trace/path_tracer.h) from the command line.
 #include <cstdio>
 #include <filesystem>
 
 #include "cli.h"
 #include "commands.h"
-#include "core/error.h"
-#include "core/params.h"
-#include "core/scene_loader.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "core/scene/scene_loader.h"
 #include "reference.h"
 #include "session.h"
 

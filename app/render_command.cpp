@@ -5,10 +5,10 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/image_io.h"
-#include "core/params.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
+#include "core/util/image_io.h"
+#include "core/util/params.h"
 #include "gl/api/context.h"
 #include "session.h"
 

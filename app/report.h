@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/metrics.h"
+#include "core/util/metrics.h"
 
 namespace vplgi {
 

@@ -1,7 +1,7 @@
 #include "session.h"
 
-#include "core/error.h"
-#include "core/params.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
 #include "cli.h"
 
 namespace vplgi {

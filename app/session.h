@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/params.h"
-#include "core/scene_loader.h"
+#include "core/util/params.h"
+#include "core/scene/scene_loader.h"
 #include "gl/api/shader_loader.h"
 #include "gl/renderer.h"
 

@@ -13,8 +13,8 @@
 
 #include "cli.h"
 #include "commands.h"
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/util/error.h"
+#include "core/util/image_io.h"
 #include "gl/api/objects.h"
 #include "gl/api/window.h"
 #include "session.h"

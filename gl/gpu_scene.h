@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "api/objects.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace vplgi {
 

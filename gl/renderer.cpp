@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "api/context.h"
-#include "core/error.h"
+#include "core/util/error.h"
 #include "api/debug.h"
-#include "core/params.h"
+#include "core/util/params.h"
 
 namespace vplgi {
 

@@ -3,7 +3,7 @@
 //   shadows (only when lights changed) -> G-buffer -> direct light -> technique (indirect)
 //     -> tone map (display RGBA8 + combined linear radiance) -> window blit | readback
 //
-// Units: the radiance targets hold W/(m^2 sr); see core/scene.h for light units.
+// Units: the radiance targets hold W/(m^2 sr); see core/scene/scene.h for light units.
 #pragma once
 
 #include <memory>
@@ -11,10 +11,10 @@
 #include <string>
 
 #include "api/timer.h"
-#include "core/direct_lights.h"
-#include "core/image_io.h"
-#include "core/params.h"
-#include "core/scene.h"
+#include "core/scene/direct_lights.h"
+#include "core/util/image_io.h"
+#include "core/util/params.h"
+#include "core/scene/scene.h"
 #include "glsl/shared/bindings.h"
 #include "gpu_scene.h"
 #include "passes/fullscreen_pass.h"

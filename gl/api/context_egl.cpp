@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "context.h"
-#include "core/error.h"
+#include "core/util/error.h"
 #include "debug.h"
 
 namespace vplgi::gl {

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <mutex>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace vplgi::gl {
 

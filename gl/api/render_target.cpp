@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace vplgi::gl {
 

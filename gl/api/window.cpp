@@ -5,7 +5,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace vplgi::gl {
 

@@ -1,6 +1,6 @@
 #include "fullscreen_pass.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

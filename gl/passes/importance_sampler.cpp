@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
 

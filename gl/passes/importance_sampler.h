@@ -14,7 +14,7 @@
 //     strict search never selects it; a tree scan adds neighbouring prefixes in different orders, so
 //     R(u) can exceed R(u-1) by an ulp although T(u) = 0, and a zero column could be drawn with a
 //     probability the sampler reports as 0 (an infinite VPL weight downstream).
-// (2) The CPU twin (core/importance_table.h) is the obvious loop and agrees bit for bit.
+// (2) The CPU twin (core/util/importance_table.h) is the obvious loop and agrees bit for bit.
 // (3) The work is W parallel columns of H steps plus one W-step pass over shared memory: for
 //     RSM-sized maps (up to 2048^2) the columns are enough parallelism on a GPU, and the accesses of
 //     neighbouring invocations are contiguous.

@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "glsl/shared/bindings.h"
 
 namespace vplgi {

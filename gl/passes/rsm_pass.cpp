@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
-#include "core/params.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/light_view.h"
 #include "glsl/shared/rsm.h"

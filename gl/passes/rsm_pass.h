@@ -63,7 +63,7 @@
 #include "../api/shader_loader.h"
 #include "../gpu_scene.h"
 #include "compute_pass.h"
-#include "core/direct_lights.h"
+#include "core/scene/direct_lights.h"
 
 namespace vplgi {
 

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "../api/debug.h"
-#include "core/error.h"
+#include "core/util/error.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/shadow_atlas.h"
 

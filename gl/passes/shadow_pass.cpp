@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/params.h"
+#include "core/util/params.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/light_view.h"
 

@@ -9,7 +9,7 @@
 #include "../api/render_target.h"
 #include "../api/shader_loader.h"
 #include "../gpu_scene.h"
-#include "core/direct_lights.h"
+#include "core/scene/direct_lights.h"
 
 namespace vplgi {
 

@@ -5,7 +5,7 @@
 #include <functional>
 #include <utility>
 
-#include "core/params.h"
+#include "core/util/params.h"
 
 namespace vplgi {
 

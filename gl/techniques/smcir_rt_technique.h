@@ -1,17 +1,17 @@
-// Technique "smcir-rt": SMCIR's VPL sampler (core/smcir_sampler.h, Algorithm 1) rendered by the
-// CPU gather of every VPL with Embree visibility (core/vpl_gather.h), as SMCIR Fig. 8's
+// Technique "smcir-rt": SMCIR's VPL sampler (core/vpl/smcir_sampler.h, Algorithm 1) rendered by the
+// CPU gather of every VPL with Embree visibility (core/vpl/vpl_gather.h), as SMCIR Fig. 8's
 // "All VPLs - ray tracing". It measures the quality of the VPL distribution apart from shadow-map,
 // interleaving and filtering artefacts; the GPU technique `smcir` builds on the same sampler.
 //
 // Overview, per frame n:
-//   update():  VPLPipeline::advance(snapshot n) (core/vpl_pipeline.h): the worker thread runs step n
+//   update():  VPLPipeline::advance(snapshot n) (core/vpl/vpl_pipeline.h): the worker thread runs step n
 //              on a snapshot of frame n (camera, lights by value) while this frame renders the set of
 //              step n-1 (one frame of latency; this pipelining is ours, not the paper's, which runs
 //              every step on the GPU within the frame). Deterministic for a seed.
 //   render():  gather the published set at every pixel on the CPU, upload to the indirect target
 // With smcir.synchronous the step runs on the render thread instead (frame n shows step n): slower,
 // but the stage times are then measured without the GPU frame competing for the same cores, and the
-// step's rays are recorded and replayed alone for the ray efficiency (core/ray_scene.h RayRecorder).
+// step's rays are recorded and replayed alone for the ray efficiency (core/trace/ray_scene.h RayRecorder).
 //
 // References: Hedman, Karras, Lehtinen, "Sequential Monte Carlo Instant Radiosity", TVCG 2017,
 // sections 3 and 4, Fig. 8.
@@ -19,10 +19,10 @@
 
 #include <memory>
 
-#include "core/ray_scene.h"
-#include "core/smcir_sampler.h"
-#include "core/vpl_gather.h"
-#include "core/vpl_pipeline.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/smcir_sampler.h"
+#include "core/vpl/vpl_gather.h"
+#include "core/vpl/vpl_pipeline.h"
 #include "technique.h"
 
 namespace vplgi {

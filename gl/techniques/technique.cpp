@@ -1,6 +1,6 @@
 #include "technique.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "direct_technique.h"
 #include "smcir_rt_technique.h"
 

@@ -14,11 +14,11 @@
 #include "../api/timer.h"
 #include "../gpu_scene.h"
 #include "../passes/gbuffer_pass.h"
-#include "core/direct_lights.h"
-#include "core/path_tracer.h"
-#include "core/progress.h"
-#include "core/ray_scene.h"
-#include "core/scene.h"
+#include "core/scene/direct_lights.h"
+#include "core/trace/path_tracer.h"
+#include "core/util/progress.h"
+#include "core/trace/ray_scene.h"
+#include "core/scene/scene.h"
 
 namespace vplgi {
 

@@ -1,7 +1,7 @@
 #version 450 core
 // Direct light: every point emitter (point, spot, emissive-surface sample) with its cube shadow,
 // every directional emitter with its shadow map, plus the surface's own emission. The same sums as
-// core/surface.cpp evaluateDirectLight, with shadow maps in place of Embree visibility.
+// core/scene/surface.cpp evaluateDirectLight, with shadow maps in place of Embree visibility.
 #include "../lib/frame.glsl"
 #include "../lib/shadows.glsl"
 #include "../shared/brdf.h"

@@ -1,6 +1,6 @@
 #version 450 core
 // G-buffer: world position, shading normal + roughness, base colour + metallic, emission + specular.
-// Material evaluation matches core/surface.cpp (surfaceAt) so CPU and GPU see the same surface.
+// Material evaluation matches core/scene/surface.cpp (surfaceAt) so CPU and GPU see the same surface.
 #include "../lib/frame.glsl"
 
 layout(location = 0) in vec3 vWorldPosition;
@@ -34,7 +34,7 @@ void main()
         tn.xy *= uMaterial.w;
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
-    // Double-sided materials are shaded on the side the viewer sees (core/surface.cpp does the same).
+    // Double-sided materials are shaded on the side the viewer sees (core/scene/surface.cpp does the same).
     if (uTextures.y != 0 && !gl_FrontFacing) n = -n;
 
     vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);

@@ -1,7 +1,7 @@
 #version 450 core
 // Importance sampler, table 1 (gl/passes/importance_sampler.h, ../shared/MATH.md 9.7): the column
 // prefix sums C(u, v) = sum_{v' <= v} I(u, v'). One invocation per column runs the serial recurrence
-// over the rows: the order the CPU twin (core/importance_table.cpp) uses, and a zero texel leaves the
+// over the rows: the order the CPU twin (core/util/importance_table.cpp) uses, and a zero texel leaves the
 // sum bit-identical (glsl/shared/importance.h says why that matters). Neighbouring invocations read
 // and write neighbouring texels of one row, so the accesses of a work-group are contiguous.
 #include "shared/bindings.h"

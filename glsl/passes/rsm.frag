@@ -1,7 +1,7 @@
 #version 450 core
 // RSM texel: world position (+ |x|^2), normal + coverage, reflected flux, diffuse and specular
 // reflectance, specular lobe (gl/passes/rsm_pass.h). The material is evaluated as in
-// passes/gbuffer.frag (and core/surface.cpp), so the RSM sees the surface the camera sees.
+// passes/gbuffer.frag (and core/scene/surface.cpp), so the RSM sees the surface the camera sees.
 #include "../shared/lights.h"
 #include "../shared/rsm.h"
 #include "../shared/bindings.h"

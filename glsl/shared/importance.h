@@ -1,7 +1,7 @@
 // One importance sampler for every technique that draws texels in proportion to a map: VSGL's BRSM
 // sampling (RSM texels as VPL candidates, ../shared/MATH.md 10.1) and LightSkin's VAL selection
 // (eq. 12). ../shared/MATH.md 9.7 has the tables and the search; this header is the search, compiled
-// as GLSL (glsl/passes/importance_sample.comp) and as C++ (core/importance_table.cpp, the CPU twin).
+// as GLSL (glsl/passes/importance_sample.comp) and as C++ (core/util/importance_table.cpp, the CPU twin).
 //
 // Tables, for a W x H map I(u, v) >= 0 (u column, v row):
 //   C(u, v) = sum_{v' <= v} I(u, v')   column prefix sums ("vertical"), T(u) = C(u, H-1)

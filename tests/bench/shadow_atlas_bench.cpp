@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
 #include "gl/api/context.h"
 #include "gl/api/shader_loader.h"
 #include "gl/gpu_scene.h"

@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
 
 using namespace vplgi;
 

@@ -5,11 +5,11 @@
 #include <array>
 #include <cmath>
 
-#include "core/builtin_scenes.h"
-#include "core/direct_lights.h"
-#include "core/error.h"
-#include "core/ray_scene.h"
-#include "core/surface.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/scene/direct_lights.h"
+#include "core/util/error.h"
+#include "core/trace/ray_scene.h"
+#include "core/scene/surface.h"
 
 using namespace vplgi;
 

@@ -9,8 +9,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/util/error.h"
+#include "core/util/image_io.h"
 
 using namespace vplgi;
 namespace fs = std::filesystem;

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "core/importance_table.h"
+#include "core/util/error.h"
+#include "core/util/importance_table.h"
 
 using namespace vplgi;
 

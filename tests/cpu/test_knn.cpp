@@ -1,4 +1,4 @@
-// kNN (core/knn.h): nanoflann against brute force, the eq. (7) density of uniform points against
+// kNN (core/util/knn.h): nanoflann against brute force, the eq. (7) density of uniform points against
 // N/area, and the timing of both (printed, not asserted).
 #include <catch2/catch.hpp>
 
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "core/knn.h"
+#include "core/util/knn.h"
 
 using namespace vplgi;
 

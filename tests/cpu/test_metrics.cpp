@@ -1,8 +1,8 @@
 // Error metrics against hand-computed values.
 #include <catch2/catch.hpp>
 
-#include "core/error.h"
-#include "core/metrics.h"
+#include "core/util/error.h"
+#include "core/util/metrics.h"
 
 using namespace vplgi;
 

@@ -1,8 +1,8 @@
 // Parameters: --set parsing, ranges, unknown keys, the configuration dump.
 #include <catch2/catch.hpp>
 
-#include "core/error.h"
-#include "core/params.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
 
 using namespace vplgi;
 

@@ -12,11 +12,11 @@
 
 #include <tbb/global_control.h>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/params.h"
-#include "core/path_tracer.h"
-#include "core/ray_scene.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "core/trace/path_tracer.h"
+#include "core/trace/ray_scene.h"
 #include "brdf_quadrature.h"
 #include "measured.h"
 

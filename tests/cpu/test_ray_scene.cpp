@@ -5,9 +5,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/builtin_scenes.h"
-#include "core/ray_scene.h"
-#include "core/surface.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/trace/ray_scene.h"
+#include "core/scene/surface.h"
 
 using namespace vplgi;
 

@@ -3,8 +3,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/error.h"
-#include "core/scene.h"
+#include "core/util/error.h"
+#include "core/scene/scene.h"
 
 using namespace vplgi;
 

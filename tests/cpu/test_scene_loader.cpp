@@ -21,8 +21,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/scene_loader.h"
+#include "core/util/error.h"
+#include "core/scene/scene_loader.h"
 #include "shared_assets.h"
 
 #ifndef VPLGI_SOURCE_DIR

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/builtin_scenes.h"
-#include "core/metrics.h"
-#include "core/path_tracer.h"
-#include "core/ray_scene.h"
-#include "core/smcir_sampler.h"
-#include "core/vpl_gather.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/metrics.h"
+#include "core/trace/path_tracer.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/smcir_sampler.h"
+#include "core/vpl/vpl_gather.h"
 #include "measured.h"
 
 using namespace vplgi;
@@ -31,7 +31,7 @@ TEST_CASE("smcir-rt on the furnace converges to rho * L_all as I grows (no clamp
 {
     // SMCIR is consistent, not unbiased: at finite I the kNN density of its blue-noise VPL set
     // (k from eq. 8) overestimates 1/p, and ranking VPLs by their frozen radiance estimates keeps the
-    // high ones (see core/smcir_sampler.h). Both shrink as I (and with it k) grows.
+    // high ones (see core/vpl/smcir_sampler.h). Both shrink as I (and with it k) grows.
     FurnaceParams furnace;
     Scene scene = makeFurnace(furnace);
     RayScene rays(scene);

@@ -1,5 +1,5 @@
-// The SMCIR VPL sampler (core/smcir_sampler.h, Algorithm 1) and the reflected-radiance estimator it
-// uses (core/path_tracer.h): closed forms in the furnace, exact indirect visibility in sealed rooms,
+// The SMCIR VPL sampler (core/vpl/smcir_sampler.h, Algorithm 1) and the reflected-radiance estimator it
+// uses (core/trace/path_tracer.h): closed forms in the furnace, exact indirect visibility in sealed rooms,
 // the M_max bound and stable slots, convergence, caching and determinism.
 #include <catch2/catch.hpp>
 
@@ -12,14 +12,14 @@
 
 #include <tbb/global_control.h>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/knn.h"
-#include "core/params.h"
-#include "core/path_tracer.h"
-#include "core/ray_scene.h"
-#include "core/smcir_sampler.h"
-#include "core/surface.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
+#include "core/util/knn.h"
+#include "core/util/params.h"
+#include "core/trace/path_tracer.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/smcir_sampler.h"
+#include "core/scene/surface.h"
 #include "measured.h"
 
 using namespace vplgi;
@@ -811,7 +811,7 @@ TEST_CASE("smcir VPLs see the untextured scene: mean material albedos, as sectio
 TEST_CASE("smcir clamping: G_max = I / (clampScale D)^2 relaxes as I grows", "[smcir]")
 {
     SMCIRParams params;
-    CHECK(params.clampScale == 2.0f); // the measured default (core/smcir_sampler.h)
+    CHECK(params.clampScale == 2.0f); // the measured default (core/vpl/smcir_sampler.h)
     params.clampScale = 1.0f;
     CHECK(computeClampGeometry(params, 2.0f) == Approx(2048.0 / 4.0).epsilon(1e-6)); // d = 2/sqrt(2048)
     params.vplCount = 8192;

@@ -1,4 +1,4 @@
-// The VPL pipeline's worker thread (core/vpl_pipeline.h) running the SMCIR sampler, against the synchronous sampler, with a light that the main thread moves
+// The VPL pipeline's worker thread (core/vpl/vpl_pipeline.h) running the SMCIR sampler, against the synchronous sampler, with a light that the main thread moves
 // while the worker runs (the race the frame snapshot removes). Tagged [threads]: the ThreadSanitizer
 // build runs these (scripts/test --tsan).
 #include <catch2/catch.hpp>
@@ -8,11 +8,11 @@
 
 #include <tbb/global_control.h>
 
-#include "core/builtin_scenes.h"
-#include "core/ray_scene.h"
-#include "core/smcir_sampler.h"
-#include "core/vpl_pipeline.h"
-#include "core/vpl_gather.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/smcir_sampler.h"
+#include "core/vpl/vpl_pipeline.h"
+#include "core/vpl/vpl_gather.h"
 
 using namespace vplgi;
 

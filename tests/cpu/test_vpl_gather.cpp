@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "core/builtin_scenes.h"
-#include "core/ray_scene.h"
-#include "core/vpl_gather.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/vpl_gather.h"
 #include "measured.h"
 
 using namespace vplgi;
@@ -56,7 +56,7 @@ TEST_CASE("one VPL: (1/n) f G I(y), zero when occluded, clamped G", "[vpl]")
     Scene scene = floorScene();
     RayScene rays(scene);
     VPLSet set;
-    set.slots.resize(4); // budget 4, one valid VPL: n = 1 (core/vpl.h)
+    set.slots.resize(4); // budget 4, one valid VPL: n = 1 (core/vpl/vpl.h)
     VPL& v = set.slots[0];
     v.valid = true;
     v.position = {0.0f, 2.0f, 0.0f};

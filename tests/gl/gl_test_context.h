@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/image_io.h"
+#include "core/util/image_io.h"
 #include "gl/api/objects.h"
 #include "gl/api/shader_loader.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "buffer_readback.h"
-#include "core/random.h"
+#include "core/util/random.h"
 #include "gl/api/debug.h"
 #include "gl/passes/compute_pass.h"
 #include "gl/passes/prefix_sum_pass.h"

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <random>
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "gl/api/debug.h"
 #include "gl/api/objects.h"
 #include "gl/passes/compute_pass.h"

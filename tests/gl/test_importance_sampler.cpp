@@ -1,5 +1,5 @@
 // The GPU importance sampler (gl/passes/importance_sampler.h) against its CPU twin
-// (core/importance_table.h): tables bit for bit, the same texels, probabilities I / total, and a
+// (core/util/importance_table.h): tables bit for bit, the same texels, probabilities I / total, and a
 // chi-square test of the GPU's draw frequencies against the map.
 #include <catch2/catch.hpp>
 
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "buffer_readback.h"
-#include "core/importance_table.h"
-#include "core/random.h"
+#include "core/util/importance_table.h"
+#include "core/util/random.h"
 #include "gl/api/debug.h"
 #include "gl/passes/importance_sampler.h"
 #include "gl_test_context.h"

@@ -12,8 +12,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/error.h"
-#include "core/params.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
 #include "gl/gpu_scene.h"
 #include "gl/passes/rsm_pass.h"
 #include "gl_test_context.h"

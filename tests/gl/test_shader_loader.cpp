@@ -6,7 +6,7 @@
 
 #include <unistd.h>
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "gl/api/debug.h"
 #include "gl_test_context.h"
 

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "core/builtin_scenes.h"
+#include "core/scene/builtin_scenes.h"
 #include "gl/api/debug.h"
 #include "gl/api/render_target.h"
 #include "gl/gpu_scene.h"

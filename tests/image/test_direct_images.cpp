@@ -1,7 +1,7 @@
 // Renders of the `direct` technique against closed forms and CPU evaluations:
 //  - furnace: direct radiance inside the sphere is rho I0 / (pi R^2) everywhere (MATH.md section 3);
 //  - cornell: pixels match the CPU evaluation of the same emitters with the same BRDF and Embree
-//    visibility (core/surface.cpp);
+//    visibility (core/scene/surface.cpp);
 //  - the shared glTF scenes load and render (tests/common/shared_assets.h: skipped when ../shared is
 //    absent, failed when CI=true).
 #include <catch2/catch.hpp>
@@ -9,10 +9,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/builtin_scenes.h"
-#include "core/ray_scene.h"
-#include "core/scene_loader.h"
-#include "core/surface.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/trace/ray_scene.h"
+#include "core/scene/scene_loader.h"
+#include "core/scene/surface.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
 #include "measured.h"

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
-#include "core/params.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
 

@@ -2,8 +2,8 @@
 // frames take effect (cheap ones at once, structural ones by rebuilding).
 #include <catch2/catch.hpp>
 
-#include "core/builtin_scenes.h"
-#include "core/error.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
 

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/builtin_scenes.h"
-#include "core/metrics.h"
-#include "core/path_tracer.h"
-#include "core/ray_scene.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/metrics.h"
+#include "core/trace/path_tracer.h"
+#include "core/trace/ray_scene.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
 #include "measured.h"

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include "core/builtin_scenes.h"
-#include "core/params.h"
-#include "core/ray_scene.h"
-#include "core/smcir_sampler.h"
-#include "core/vpl_gather.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/params.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/smcir_sampler.h"
+#include "core/vpl/vpl_gather.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
 

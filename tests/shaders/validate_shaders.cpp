@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "gl/api/shader_loader.h"
 
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "ray_scene.h"
+#include "core/trace/ray_scene.h"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +13,7 @@
 
 #include <embree3/rtcore.h>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

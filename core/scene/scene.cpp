@@ -1,11 +1,11 @@
-#include "scene.h"
+#include "core/scene/scene.h"
 
 #include <cmath>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

@@ -1,4 +1,4 @@
-#include "vpl_pipeline.h"
+#include "core/vpl/vpl_pipeline.h"
 
 #include <chrono>
 

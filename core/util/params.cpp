@@ -1,11 +1,11 @@
-#include "params.h"
+#include "core/util/params.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

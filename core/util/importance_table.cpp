@@ -1,9 +1,9 @@
-#include "importance_table.h"
+#include "core/util/importance_table.h"
 
 #include <cmath>
 #include <string>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

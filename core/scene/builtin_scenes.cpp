@@ -6,7 +6,7 @@
 // Layouts that look random come from a seeded std::mt19937 used as `engine() % n`: the engine's
 // output is fixed by the standard, distribution objects are not, so the scenes are identical
 // with every standard library.
-#include "builtin_scenes.h"
+#include "core/scene/builtin_scenes.h"
 
 #include <algorithm>
 #include <array>
@@ -20,7 +20,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

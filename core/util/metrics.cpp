@@ -1,10 +1,10 @@
-#include "metrics.h"
+#include "core/util/metrics.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "../glsl/shared/tonemap.h"
-#include "error.h"
+#include "glsl/shared/tonemap.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

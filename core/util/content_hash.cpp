@@ -1,4 +1,4 @@
-#include "content_hash.h"
+#include "core/util/content_hash.h"
 
 #include <cstdio>
 

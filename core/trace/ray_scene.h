@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene.h"
+#include "core/scene/scene.h"
 
 namespace vplgi {
 

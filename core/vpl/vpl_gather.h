@@ -5,16 +5,16 @@
 //
 //   L_ind(x -> eye) = (1/n) sum_i f(x, w_o, w_i) min(G(x <-> y_i), G_max) V(x, y_i) I(y_i)   (SMCIR eq. 5/6)
 //
-// with n the number of valid VPLs (core/vpl.h: the densities are normalised by the same n), f the
+// with n the number of valid VPLs (core/vpl/vpl.h: the densities are normalised by the same n), f the
 // shared BRDF (glsl/shared/brdf.h) and I(y) = L(y)/p(y).
 #pragma once
 
 #include <glm/glm.hpp>
 
-#include "image_io.h"
-#include "ray_scene.h"
-#include "surface.h"
-#include "vpl.h"
+#include "core/util/image_io.h"
+#include "core/trace/ray_scene.h"
+#include "core/scene/surface.h"
+#include "core/vpl/vpl.h"
 
 namespace vplgi {
 

@@ -7,9 +7,9 @@
 
 #include <glm/glm.hpp>
 
-#include "../glsl/shared/brdf.h"
-#include "direct_lights.h"
-#include "ray_scene.h"
+#include "glsl/shared/brdf.h"
+#include "core/scene/direct_lights.h"
+#include "core/trace/ray_scene.h"
 
 namespace vplgi {
 

@@ -8,9 +8,9 @@
 // The set aims at two things (3.1): VPLs only on surfaces *indirectly visible* to the camera (seen
 // from some surface the camera sees), and a density proportional to the radiosity, p(y) ~ L(y), so
 // that every VPL has about the same intensity I(y) = L(y)/p(y) (eq. 6). The density of a set that
-// evolved over many frames has no closed form; it is estimated with kNN (eq. 7, core/knn.h).
+// evolved over many frames has no closed form; it is estimated with kNN (eq. 7, core/util/knn.h).
 // This class is the sampler only: the renderer (gl/techniques) shades with the published set
-// through eq. (5), L_ind(x) = (1/I) sum_i f(x) G(x, y_i) V(x, y_i) I(y_i) (core/vpl.h, MATH.md 1.4).
+// through eq. (5), L_ind(x) = (1/I) sum_i f(x) G(x, y_i) V(x, y_i) I(y_i) (core/vpl/vpl.h, MATH.md 1.4).
 //
 // Overview (Algorithm 1; one call of step() is one frame, lines 3-19)
 // --------
@@ -119,11 +119,11 @@
 //  thread-safe: call step() from one thread and read vpls() between steps (copy it to hand it to
 //  another thread). A step reads its FrameSnapshot (camera, lights: copies) and the scene's static
 //  parts only, never scene.lights, so the render thread may animate the lights meanwhile
-//  (core/smcir_worker.h; a ThreadSanitizer test checks it).
+//  (core/vpl/vpl_pipeline.h; a ThreadSanitizer test checks it).
 //
 //  Radiance paths share vertex 0: ReflectedRadianceEstimator evaluates the punctual lights at y
 //  once per estimate, not once per path, and skips the final emission-only ray when the scene has
-//  no emissive triangles (core/path_tracer.h: both exact, bit for bit; the seeds, and so every
+//  no emissive triangles (core/trace/path_tracer.h: both exact, bit for bit; the seeds, and so every
 //  VPL's radiance, are unchanged). In the maze (8 point lights) this cut the radiance rays by
 //  about 30 % (static frame 724k -> 522k rays).
 //
@@ -149,12 +149,12 @@
 
 #include <glm/glm.hpp>
 
-#include "frame_snapshot.h"
-#include "ray_scene.h"
-#include "vpl_pipeline.h"
-#include "scene.h"
-#include "surface.h"
-#include "vpl.h"
+#include "core/scene/frame_snapshot.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/vpl_pipeline.h"
+#include "core/scene/scene.h"
+#include "core/scene/surface.h"
+#include "core/vpl/vpl.h"
 
 namespace vplgi {
 

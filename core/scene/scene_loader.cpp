@@ -8,7 +8,7 @@
 // the file and the element, rather than loaded half-way.
 //
 // Scene files: see loadSceneFile below for the keys; every key is checked, unknown keys are errors.
-#include "scene_loader.h"
+#include "core/scene/scene_loader.h"
 
 #include <algorithm>
 #include <cctype>
@@ -25,8 +25,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
-#include "builtin_scenes.h"
-#include "error.h"
+#include "core/scene/builtin_scenes.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

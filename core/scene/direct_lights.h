@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "../glsl/shared/lights.h"
-#include "scene.h"
+#include "glsl/shared/lights.h"
+#include "core/scene/scene.h"
 
 namespace vplgi {
 

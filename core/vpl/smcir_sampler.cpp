@@ -1,4 +1,4 @@
-#include "smcir_sampler.h"
+#include "core/vpl/smcir_sampler.h"
 
 #include <algorithm>
 #include <atomic>
@@ -12,13 +12,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "basis.h"
-#include "content_hash.h"
-#include "error.h"
-#include "knn.h"
-#include "params.h"
-#include "path_tracer.h"
-#include "random.h"
+#include "core/util/basis.h"
+#include "core/util/content_hash.h"
+#include "core/util/error.h"
+#include "core/util/knn.h"
+#include "core/util/params.h"
+#include "core/trace/path_tracer.h"
+#include "core/util/random.h"
 
 namespace vplgi {
 
@@ -82,7 +82,7 @@ double millisecondsSince(Clock::time_point start)
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// --- Random numbers (core/random.h; no std:: distributions) ------------------------------------
+// --- Random numbers (core/util/random.h; no std:: distributions) ------------------------------------
 
 // Which part of a frame a stream belongs to; with (seed, frame, item) it names the stream.
 enum Stage : std::uint64_t {

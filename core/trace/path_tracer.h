@@ -19,7 +19,7 @@
 //
 // Details
 // -------
-//  Units are those of core/scene.h: point/spot intensity [W/sr], directional irradiance [W/m^2],
+//  Units are those of core/scene/scene.h: point/spot intensity [W/sr], directional irradiance [W/m^2],
 //  emission radiance [W/(m^2 sr)]; the image holds radiance [W/(m^2 sr)] per pixel (linear RGB,
 //  rows top to bottom, alpha 1).
 //
@@ -85,7 +85,7 @@
 //  assumption) and wo = n; y's own emission is left out (the renderer draws emitters directly).
 //  The result is the diffuse exitant radiance L(y) = (rho_d/pi) * irradiance, with light reflected
 //  at most `maxBounces` times counting the reflection at y (1 = direct light at y only). A VPL
-//  carries it as its radiance (core/vpl.h).
+//  carries it as its radiance (core/vpl/vpl.h).
 //
 //  Work skipped because it cannot change the result (both exact, bit for bit):
 //   - Without emissive triangles, the intersection of a vertex past maxDepth is not cast: such a
@@ -123,11 +123,11 @@
 
 #include <glm/glm.hpp>
 
-#include "../glsl/shared/brdf.h"
-#include "image_io.h"
-#include "ray_scene.h"
-#include "scene.h"
-#include "surface.h"
+#include "glsl/shared/brdf.h"
+#include "core/util/image_io.h"
+#include "core/trace/ray_scene.h"
+#include "core/scene/scene.h"
+#include "core/scene/surface.h"
 
 namespace vplgi {
 

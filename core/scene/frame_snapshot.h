@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene.h"
+#include "core/scene/scene.h"
 
 namespace vplgi {
 

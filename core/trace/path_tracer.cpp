@@ -1,4 +1,4 @@
-#include "path_tracer.h"
+#include "core/trace/path_tracer.h"
 
 #include <algorithm>
 #include <cassert>
@@ -13,12 +13,12 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
-#include "basis.h"
-#include "direct_lights.h"
-#include "error.h"
-#include "params.h"
-#include "random.h"
-#include "surface.h"
+#include "core/util/basis.h"
+#include "core/scene/direct_lights.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "core/util/random.h"
+#include "core/scene/surface.h"
 
 namespace vplgi {
 
@@ -88,7 +88,7 @@ namespace {
 
 using Mode = PathTracerParams::Mode;
 
-// --- Random numbers (core/random.h) ---------------------------------------------------------------
+// --- Random numbers (core/util/random.h) ---------------------------------------------------------------
 
 // The stream of sample `sample` of pixel `pixel`: a function of these and the seed only, which makes
 // the image independent of threads and scheduling.

@@ -1,4 +1,4 @@
-#include "image_io.h"
+#include "core/util/image_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,7 +12,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

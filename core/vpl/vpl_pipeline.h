@@ -25,9 +25,9 @@
 #include <utility>
 #include <vector>
 
-#include "frame_snapshot.h"
-#include "ray_scene.h"
-#include "vpl.h"
+#include "core/scene/frame_snapshot.h"
+#include "core/trace/ray_scene.h"
+#include "core/vpl/vpl.h"
 
 namespace vplgi {
 

@@ -1,4 +1,4 @@
-#include "vpl_gather.h"
+#include "core/vpl/vpl_gather.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@ namespace vplgi {
 glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
                      const VPLGatherParams& params)
 {
-    // 1/n with n the number of valid VPLs, the same n the densities are normalised by (core/vpl.h).
+    // 1/n with n the number of valid VPLs, the same n the densities are normalised by (core/vpl/vpl.h).
     const std::size_t n = vpls.validCount();
     if (n == 0) return glm::vec3(0.0f);
     const float offset = 1e-4f * rays.sceneScale();

@@ -1,4 +1,4 @@
-#include "surface.h"
+#include "core/scene/surface.h"
 
 #include <algorithm>
 #include <cmath>

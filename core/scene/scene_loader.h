@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "scene.h"
+#include "core/scene/scene.h"
 
 namespace vplgi {
 

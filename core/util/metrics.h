@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "image_io.h"
+#include "core/util/image_io.h"
 
 namespace vplgi {
 

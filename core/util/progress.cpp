@@ -1,4 +1,4 @@
-#include "progress.h"
+#include "core/util/progress.h"
 
 #include <cstdio>
 

@@ -1,9 +1,9 @@
-#include "direct_lights.h"
+#include "core/scene/direct_lights.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "error.h"
+#include "core/util/error.h"
 
 namespace vplgi {
 

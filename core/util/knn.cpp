@@ -1,4 +1,4 @@
-#include "knn.h"
+#include "core/util/knn.h"
 
 #include <algorithm>
 #include <cmath>
