@@ -245,11 +245,15 @@ constexpr int kNumbersPerVertex = 7;
 
 class Integrator {
 public:
-    // `lights` in place of scene.lights (a snapshot: the scene's light list is never read).
-    Integrator(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights, const PathTracerParams& params)
+    // `lights` in place of scene.lights (a snapshot: the scene's light list is never read). With
+    // params.untexturedBounces, `untextured` is the table to use (the caller's, computed once), or
+    // null to compute it here.
+    Integrator(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights, const PathTracerParams& params,
+               const UntexturedMaterials* untextured = nullptr)
         : mScene(scene), mRays(rays), mParams(params), mOffset(1e-4f * rays.sceneScale())
     {
-        if (params.untexturedBounces) mUntextured = computeUntexturedMaterials(scene);
+        if (params.untexturedBounces && !untextured) mOwnUntextured = computeUntexturedMaterials(scene);
+        mUntextured = !params.untexturedBounces ? nullptr : untextured ? untextured : &*mOwnUntextured;
         // Punctual and directional lights exactly as the GPU direct pass gets them; the cosine point
         // samples standing in for emissive triangles are dropped (triangles are sampled by area here).
         DirectLightSet all = buildDirectLights(scene, lights, DirectLightParams{});
@@ -315,7 +319,8 @@ private:
     const PathTracerParams& mParams;
     const float mOffset; // ray offset along geometric normals [m]
     DirectLightSet mPunctual;
-    std::optional<UntexturedMaterials> mUntextured; // untexturedBounces: the materials of vertices >= 1
+    std::optional<UntexturedMaterials> mOwnUntextured;   // computed here when the caller gave none
+    const UntexturedMaterials* mUntextured = nullptr;      // untexturedBounces: the materials of vertices >= 1
     std::vector<EmissiveTriangle> mEmitters;
     std::vector<int> mFirstEmitter; // per instance: index of its triangle 0 in mEmitters, -1 = none
     std::vector<double> mPowerCdf;  // running sum of mEmitters' power
@@ -484,7 +489,7 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
             if (rays) ++*rays;
             if (!hit.valid()) break; // no environment light
             wo = -ray.direction;
-            s = surfaceAt(mScene, hit, wo, depth >= 1 && mUntextured ? &*mUntextured : nullptr);
+            s = surfaceAt(mScene, hit, wo, depth >= 1 ? mUntextured : nullptr);
 
             if (mParams.mode == Mode::Clamped && depth == 1) {
                 // SMCIR Sec. 5.4: clamp G of the segment x0 -> x1 as VPL methods clamp it (MATH.md 1.2 a).
@@ -676,22 +681,23 @@ struct ReflectedRadianceEstimator::Impl {
     PathTracerParams params; // declared before the integrator, which keeps a reference to it
     Integrator integrator;
 
-    Impl(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights, const PathTracerParams& p)
-        : params(p), integrator(scene, rays, lights, params)
+    Impl(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights, const PathTracerParams& p,
+         const UntexturedMaterials* untextured)
+        : params(p), integrator(scene, rays, lights, params, untextured)
     {
     }
 };
 
 namespace {
 
-PathTracerParams reflectedRadianceParams(int maxBounces, bool untextured)
+PathTracerParams reflectedRadianceParams(int maxBounces, const UntexturedMaterials* untextured)
 {
     require(maxBounces >= 1 && maxBounces <= 1024, "reflected radiance: maxBounces must be in [1, 1024]");
     PathTracerParams params;
     params.mode = Mode::Full; // vertex 0's emission is skipped by trace() itself
     params.maxDepth = maxBounces;
     params.rrStartDepth = 3; // as the reference's default: Russian roulette from vertex 3 on
-    params.untexturedBounces = untextured;
+    params.untexturedBounces = untextured != nullptr;
     return params;
 }
 
@@ -701,13 +707,14 @@ constexpr std::uint32_t kReflectedRadianceStream = 0xFFFFFFFFu;
 } // namespace
 
 ReflectedRadianceEstimator::ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, int maxBounces)
-    : ReflectedRadianceEstimator(scene, rays, scene.lights, maxBounces, false)
+    : ReflectedRadianceEstimator(scene, rays, scene.lights, maxBounces, nullptr)
 {
 }
 
 ReflectedRadianceEstimator::ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays,
-                                                       const std::vector<Light>& lights, int maxBounces, bool untextured)
-    : mImpl(std::make_unique<Impl>(scene, rays, lights, reflectedRadianceParams(maxBounces, untextured)))
+                                                       const std::vector<Light>& lights, int maxBounces,
+                                                       const UntexturedMaterials* untextured)
+    : mImpl(std::make_unique<Impl>(scene, rays, lights, reflectedRadianceParams(maxBounces, untextured), untextured))
 {
     assert(&rays.scene() == &scene && "the RayScene must be built from this scene");
 }

@@ -197,10 +197,10 @@ public:
     // Reads scene.lights now (on the calling thread).
     ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, int maxBounces);
     // With a snapshot of the lights instead of scene.lights (the scene's light list is never read,
-    // so another thread may animate it meanwhile), and with `untextured` the paths' vertices after y
-    // use UntexturedMaterials (SMCIR 5).
+    // so another thread may animate it meanwhile), and with `untextured` (not null; it must outlive
+    // the estimator) the paths' vertices after y use that table (SMCIR 5).
     ReflectedRadianceEstimator(const Scene& scene, const RayScene& rays, const std::vector<Light>& lights,
-                               int maxBounces, bool untextured);
+                               int maxBounces, const UntexturedMaterials* untextured);
     ~ReflectedRadianceEstimator();
     ReflectedRadianceEstimator(const ReflectedRadianceEstimator&) = delete;
     ReflectedRadianceEstimator& operator=(const ReflectedRadianceEstimator&) = delete;

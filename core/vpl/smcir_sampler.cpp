@@ -603,7 +603,7 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::candidatesWithRadiance(const 
     // Line 7: their radiance, lit by this frame's snapshot of the lights.
     const Clock::time_point t = Clock::now();
     mEstimator = std::make_unique<ReflectedRadianceEstimator>(mScene, mRays, lights, mParams.radiosityBounces,
-                                                              !mParams.texturedVPLs);
+                                                              vplMaterials());
     estimateCandidateRadiance(candidates);
     mTimes.radiosity = millisecondsSince(t);
     return candidates;

@@ -25,6 +25,17 @@ using Mode = PathTracerParams::Mode;
 
 namespace {
 
+// The two furnaces of the closed-form checks: rho = 0.5, R = 1, I0 = pi (L_all = 1, pbrt's) and
+// rho = 0.8, R = 2, I0 = 5.
+std::array<FurnaceParams, 2> furnaceTestSets()
+{
+    FurnaceParams bright;
+    bright.albedo = 0.8f;
+    bright.radius = 2.0f;
+    bright.intensity = 5.0f;
+    return {FurnaceParams{}, bright};
+}
+
 constexpr double kPi = 3.14159265358979323846;
 
 // Mean of one channel over the image.
@@ -168,12 +179,7 @@ TEST_CASE("furnace sphere: direct, full, indirect, one-bounce and clamped match 
 {
     // The closed forms hold for the ideal sphere; the default 96 x 192 tessellation is within 1e-3 of
     // it (flat facets change distances and cosines by about (pi/96)^2 / 8).
-    FurnaceParams pbrt;   // rho = 0.5, R = 1, I0 = pi: L_all = 1
-    FurnaceParams bright; // rho = 0.8, R = 2, I0 = 5
-    bright.albedo = 0.8f;
-    bright.radius = 2.0f;
-    bright.intensity = 5.0f;
-    for (const FurnaceParams& furnace : {pbrt, bright}) {
+    for (const FurnaceParams& furnace : furnaceTestSets()) {
         INFO("rho = " << furnace.albedo << ", R = " << furnace.radius << ", I0 = " << furnace.intensity);
         const Scene scene = makeFurnace(furnace);
         const RayScene rays(scene);
@@ -688,12 +694,7 @@ TEST_CASE("furnace sphere: onebounce is rho^2 I0 / (pi R^2) whatever the depth c
 {
     // OneBounce keeps light reflected exactly once between the light and the primary hit: on the
     // furnace that is L_2 (MATH.md 3), and it must not grow with maxDepth (it ends paths at vertex 2).
-    FurnaceParams pbrt;   // rho = 0.5, R = 1, I0 = pi
-    FurnaceParams bright; // rho = 0.8, R = 2, I0 = 5
-    bright.albedo = 0.8f;
-    bright.radius = 2.0f;
-    bright.intensity = 5.0f;
-    for (const FurnaceParams& furnace : {pbrt, bright}) {
+    for (const FurnaceParams& furnace : furnaceTestSets()) {
         INFO("rho = " << furnace.albedo << ", R = " << furnace.radius << ", I0 = " << furnace.intensity);
         const Scene scene = makeFurnace(furnace);
         const RayScene rays(scene);
