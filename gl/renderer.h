@@ -58,6 +58,7 @@ public:
     int lastRenderedShadowCubes() const { return mShadows.lastRenderedCubes(); }
     const DirectLightSet& lights() const { return mLights; }
     Technique& technique() { return *mTechnique; }
+    const GpuScene& gpuScene() const { return mGpuScene; }
     const RendererParams& params() const { return mParams; }
     // The one live parameter set: the renderer's fields and its technique's (Session, CLI, scene
     // file, reports and the viewer all read and write these through visitParams).

@@ -5,18 +5,23 @@
 
 #include <tbb/parallel_for.h>
 
+#include "glsl/shared/vpl.h"
+
 namespace vplgi {
 
 glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
-                     const VPLGatherParams& params)
+                     const VPLGatherParams& params, int subset)
 {
     // 1/n with n the number of valid VPLs, the same n the densities are normalised by (core/vpl/vpl.h).
     const std::size_t n = vpls.validCount();
     if (n == 0) return glm::vec3(0.0f);
     const float offset = 1e-4f * rays.sceneScale();
     const glm::vec3 origin = point.position + point.geometricNormal * offset;
+    const int tile = std::max(params.interleaveTile, 1);
+    const std::size_t classes = static_cast<std::size_t>(tile) * static_cast<std::size_t>(tile);
     glm::vec3 sum(0.0f);
-    for (const VPL& vpl : vpls.slots) {
+    for (std::size_t i = static_cast<std::size_t>(subset); i < vpls.slots.size(); i += classes) {
+        const VPL& vpl = vpls.slots[i];
         if (!vpl.valid || !(vpl.density > 0.0f)) continue;
         const glm::vec3 toVPL = vpl.position - point.position;
         const float distance2 = glm::dot(toVPL, toVPL);
@@ -31,7 +36,8 @@ glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoin
         if (!rays.visible(origin, vpl.position + vpl.normal * offset)) continue;
         sum += shared::evaluateBRDF(point.material, point.normal, wo, wi) * geometry * vpl.intensity();
     }
-    return sum / static_cast<float>(n);
+    // tile^2 / n (glsl/shared/vpl.h); the division keeps tile = 1 bit-identical to earlier releases.
+    return tile == 1 ? sum / static_cast<float>(n) : sum * shared::vplEstimatorScale(static_cast<int>(n), tile);
 }
 
 ImageRGBA32F renderVPLGather(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
@@ -57,7 +63,9 @@ ImageRGBA32F renderVPLGather(const Scene& scene, const RayScene& rays, const Cam
             const Hit hit = rays.intersect(ray);
             if (!hit.valid()) continue;
             const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
-            const glm::vec3 value = gatherVPLs(rays, vpls, s, -ray.direction, params);
+            const int tile = std::max(params.interleaveTile, 1);
+            const int subset = shared::vplInterleaveClass(glm::ivec2(x, height - 1 - y), tile);
+            const glm::vec3 value = gatherVPLs(rays, vpls, s, -ray.direction, params, subset);
             out[0] = value.r;
             out[1] = value.g;
             out[2] = value.b;

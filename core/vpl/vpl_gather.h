@@ -20,11 +20,14 @@ namespace vplgi {
 
 struct VPLGatherParams {
     float clampGeometry = 0.0f; // G_max [1/m^2]; 0 = no clamping
+    int interleaveTile = 1;     // > 1: interleaved sampling with tiles of this size, the subsets and
+                                // scale of glsl/shared/vpl.h (GL pixel rows, bottom up, as the GPU)
 };
 
-// Indirect radiance reflected at `point` towards `wo` (unit, away from the surface).
+// Indirect radiance reflected at `point` towards `wo` (unit, away from the surface), from the VPLs
+// of interleaving class `subset` (slots i with i mod tile^2 = subset; all of them when tile = 1).
 glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
-                     const VPLGatherParams& params);
+                     const VPLGatherParams& params, int subset = 0);
 
 // The indirect image of `camera` (pixel centres, rows top to bottom); pixels that see nothing are 0.
 // Multi-threaded (TBB), deterministic.

@@ -3,17 +3,19 @@
 #include "core/util/error.h"
 #include "direct_technique.h"
 #include "smcir_rt_technique.h"
+#include "vpl_technique.h"
 
 namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct", "smcir-rt"};
+    return {"direct", "smcir", "smcir-rt"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
 {
     if (name == "direct") return std::make_unique<DirectTechnique>();
+    if (name == "smcir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::SMCIR);
     if (name == "smcir-rt") return std::make_unique<SMCIRRayTracedTechnique>();
     std::string known;
     for (const std::string& n : techniqueNames()) known += (known.empty() ? "" : ", ") + n;

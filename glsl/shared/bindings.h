@@ -23,9 +23,14 @@ VPLGI_CONST int kBindingImportanceSamples = 8;   // SSBO ImportanceSample[]
 VPLGI_CONST int kBindingShadowAtlasMatrices = 9; // SSBO mat4[] (clipFromWorld per shadow-atlas tile index)
 VPLGI_CONST int kBindingShadowAtlasDraw = 10;    // SSBO int[] (tile index per instance of a ShadowAtlas draw)
 
+// Storage buffers of the VPL techniques (gl/passes/vpl_shadow_maps, gl/techniques/vpl_technique).
+VPLGI_CONST int kBindingVPLs = 11;               // SSBO GpuVPL[] (glsl/shared/vpl.h), one per slot
+VPLGI_CONST int kBindingVPLBatch = 12;           // SSBO VPLBatchItem[]: the VPLs whose maps are being resampled
+
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
 VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)
+VPLGI_CONST int kImageVPLShadowMaps = 6; // r32f 2D array: the VPL paraboloid maps being written
 
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;
@@ -42,6 +47,7 @@ VPLGI_CONST int kUnitDirect = 10;
 VPLGI_CONST int kUnitIndirect = 11;
 VPLGI_CONST int kUnitRSMSource = 12; // 6 units: RSM level l per attachment (passes/rsm_downsample.comp)
 VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), after the RSM units 12..17
+VPLGI_CONST int kUnitVPLShadowMaps = 19; // VPL paraboloid maps: distance [m] (sampler2DArray, r32f)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target

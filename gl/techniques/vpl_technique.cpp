@@ -1,0 +1,236 @@
+#include "vpl_technique.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "../api/debug.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/vpl.h"
+
+namespace vplgi {
+
+void VPLRenderParams::visitParams(ParamVisitor& v, const std::string& prefix)
+{
+    v.field(prefix + ".shadowMapSize", shadowMapSize, 4, 4096, "paraboloid shadow map resolution per VPL (section 4: 128)");
+    v.choice(prefix + ".shading", shading, {"interleaved", "exhaustive"},
+             "interleaved: each pixel of a 4x4 tile gathers 1/16 of the VPLs (section 4); exhaustive: every VPL");
+    v.field(prefix + ".interleaveTile", interleaveTile, 1, 16, "interleaving tile size (section 4: 4)");
+    v.choice(prefix + ".visibility", visibility, {"shadowmaps", "raytraced", "none"},
+             "VPL visibility: paraboloid shadow maps (the paper), Embree rays on the CPU, or none");
+    v.field(prefix + ".normalOffset", normalOffset, 0.0f, 64.0f,
+            "shadow test: lift the shaded point along its normal by this many map texels (not in the paper)");
+    v.field(prefix + ".depthBias", depthBias, 0.0f, 1.0f,
+            "shadow test: lit while distance <= stored * (1 + bias) (not in the paper)");
+    v.field(prefix + ".shadowBatch", shadowBatch, 1, 65536, "VPLs whose cube faces are rendered per batch");
+    v.field(prefix + ".rebuildEveryFrame", rebuildEveryFrame,
+            "re-render every shadow map every frame instead of the changed ones (a yardstick)");
+    v.field(prefix + ".filter", filter, "cross-bilateral filter over the interleaved result (section 4)");
+}
+
+VPLTechnique::VPLTechnique(Source source) : mSource(source) {}
+
+VPLTechnique::~VPLTechnique() = default; // the pipeline joins its worker
+
+std::string_view VPLTechnique::name() const
+{
+    return "smcir";
+}
+
+void VPLTechnique::visitParams(ParamVisitor& v)
+{
+    mSMCIR.visitParams(v);
+    mRender.visitParams(v, prefix());
+    v.field(prefix() + ".synchronous", mSynchronous,
+            "run the sampler step on the render thread (no overlap with the GPU frame; for clean timings)");
+}
+
+int VPLTechnique::vplCount() const
+{
+    return mSMCIR.vplCount;
+}
+
+float VPLTechnique::clampGeometry() const
+{
+    return computeClampGeometry(mSMCIR, mRays->sceneScale());
+}
+
+void VPLTechnique::setScene(const SceneContext& context)
+{
+    mScene = &context.scene;
+    mGpuScene = &context.gpuScene;
+    mShaders = &context.shaders;
+    mRays = &context.rays.get();
+    mProgress = context.progress;
+    mShading = std::make_unique<FullscreenPass>(context.shaders, "VPL shading", "passes/vpl_shading.frag");
+    gl::RenderTargetDesc desc = gl::RenderTargetDesc::colors({GL_RGBA32F}, {"interleaved indirect"});
+    mInterleaved = gl::RenderTarget("VPL interleaved shading", desc);
+    startPipeline();
+    createShadowMaps();
+}
+
+void VPLTechnique::startPipeline()
+{
+    mPipeline.reset(); // joins a running step before its sampler goes
+    mRendered = nullptr;
+    mMapsGeneration.reset();
+    mPipeline = std::make_unique<VPLPipeline>(std::make_unique<SMCIRSampler>(*mScene, *mRays, mSMCIR), mRays);
+}
+
+void VPLTechnique::createShadowMaps()
+{
+    VPLShadowMapParams params;
+    params.mapSize = mRender.shadowMapSize;
+    params.slots = vplCount();
+    params.batchSize = mRender.shadowBatch;
+    // The faces clip axial depth (glsl/shared/light_view.h): zFar beyond the scene's diagonal, zNear
+    // a small fraction of it (closer occluders are lost; G is clamped there anyway).
+    const float diagonal = mRays->sceneScale();
+    params.zFar = 1.01f * diagonal;
+    params.zNear = 1e-4f * diagonal;
+    mShadowMaps.reset();
+    mShadowMaps = std::make_unique<VPLShadowMaps>(*mShaders, params);
+    mMapsGeneration.reset();
+}
+
+void VPLTechnique::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    mShading->reloadShaders(shaders);
+    if (mShadowMaps) mShadowMaps->reloadShaders(shaders);
+}
+
+void VPLTechnique::update(const FrameContext& frame)
+{
+    const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
+    VPLSampler::Progress progress;
+    if (mProgress && mScene->triangleCount() > 50000)
+        progress = [this](int done, int total) { mProgress(std::string(name()) + " warm-up", done, total); };
+    mRendered = &mPipeline->advance(FrameSnapshot::of(*mScene, frame.camera, aspect, frame.time), mSynchronous, progress);
+}
+
+void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target)
+{
+    const VPLSet& set = *mRendered;
+    // 1. Every slot's VPL (48 bytes each: re-uploading all is cheaper than tracking them).
+    std::vector<shared::GpuVPL> gpu(set.slots.size());
+    for (std::size_t i = 0; i < set.slots.size(); ++i) {
+        const VPL& vpl = set.slots[i];
+        const bool valid = vpl.valid && vpl.density > 0.0f;
+        gpu[i].positionValid = glm::vec4(vpl.position, valid ? 1.0f : 0.0f);
+        gpu[i].normal = glm::vec4(vpl.normal, 0.0f);
+        gpu[i].intensity = glm::vec4(valid ? vpl.intensity() : glm::vec3(0.0f), 0.0f);
+    }
+    gl::uploadVector(mVPLBuffer, std::string(name()) + " VPLs", gpu);
+    const int validCount = static_cast<int>(set.validCount());
+    const int tile = mRender.shading == VPLRenderParams::Exhaustive ? 1 : std::max(mRender.interleaveTile, 1);
+
+    mInterleaved.resize(frame.width, frame.height);
+    mFacesRendered = 0;
+    if (mRender.visibility == VPLRenderParams::RayTraced) {
+        shadeRayTraced(frame, mInterleaved);
+    } else {
+        // 2. Lazy update: only the slots that changed since the set whose maps we hold.
+        if (mRender.visibility == VPLRenderParams::ShadowMaps) {
+            gl::PassTimer::Scope scope(frame.timer, "shadow maps");
+            std::vector<std::uint32_t> dirty;
+            if (mMapsGeneration && *mMapsGeneration == set.generation && !mRender.rebuildEveryFrame) {
+                // the same set as last frame (the pipeline's first asynchronous frame): nothing moved
+            } else if (mMapsGeneration && *mMapsGeneration + 1 == set.generation && !mRender.rebuildEveryFrame) {
+                dirty = set.changed;
+            } else {
+                for (std::uint32_t i = 0; i < set.slots.size(); ++i)
+                    dirty.push_back(i);
+            }
+            VPLShadowMaps::Progress progress;
+            if (mProgress && dirty.size() > 512)
+                progress = [this](int done, int total) { mProgress(std::string(name()) + " shadow maps", done, total); };
+            mShadowMaps->update(*mGpuScene, set, dirty, &frame.timer, progress);
+            mFacesRendered = mShadowMaps->facesRendered();
+            mMapsGeneration = set.generation;
+        }
+        // 3. Interleaved shading, eq. (5).
+        gl::PassTimer::Scope scope(frame.timer, "interleaved shading");
+        gbuffer.bindForReading();
+        mShadowMaps->bindForReading();
+        bindStorageBuffer(shared::kBindingVPLs, mVPLBuffer);
+        const gl::Program& program = mShading->program();
+        program.set("uTile", tile);
+        program.set("uValidCount", validCount);
+        program.set("uClampGeometry", clampGeometry());
+        program.set("uVisibility", mRender.visibility == VPLRenderParams::ShadowMaps ? 1 : 0);
+        program.set("uMapSize", mShadowMaps->params().mapSize);
+        program.set("uMapTilesPerRow", mShadowMaps->layout().tilesPerRow);
+        program.set("uNormalOffset", mRender.normalOffset);
+        program.set("uDepthBias", mRender.depthBias);
+        mShading->render(mInterleaved);
+    }
+    // 4. The cross-bilateral filter (section 4).
+    gl::PassTimer::Scope scope(frame.timer, "filter");
+    glCopyImageSubData(mInterleaved.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0,
+                       0, 0, 0, frame.width, frame.height, 1);
+}
+
+void VPLTechnique::shadeRayTraced(const FrameContext& frame, const gl::RenderTarget& into)
+{
+    const auto start = std::chrono::steady_clock::now();
+    VPLGatherParams gather;
+    gather.clampGeometry = clampGeometry();
+    gather.interleaveTile = mRender.shading == VPLRenderParams::Exhaustive ? 1 : std::max(mRender.interleaveTile, 1);
+    const ImageRGBA32F image =
+        renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, *mRendered, gather);
+    const std::size_t row = static_cast<std::size_t>(frame.width) * 4; // GL rows run bottom to top
+    std::vector<float> flipped(image.pixels.size());
+    for (int y = 0; y < frame.height; ++y)
+        std::copy_n(&image.pixels[static_cast<std::size_t>(frame.height - 1 - y) * row], row, &flipped[y * row]);
+    glTextureSubImage2D(into.color(0).id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
+    mRayTracedMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void VPLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
+{
+    if (!mScene) return;
+    const std::string p = prefix() + ".";
+    // Read every frame: the clamp, the shading and shadow-test settings, where the step runs.
+    static const std::set<std::string> cheap = {"clampScale", "synchronous", "shading", "interleaveTile", "visibility",
+                                                "normalOffset", "depthBias", "rebuildEveryFrame", "filter"};
+    bool restart = false, maps = false;
+    for (const std::string& key : changedKeys) {
+        if (key.rfind(p, 0) != 0) continue;
+        const std::string field = key.substr(p.size());
+        if (cheap.count(field)) continue;
+        if (field == "shadowMapSize" || field == "shadowBatch")
+            maps = true;
+        else
+            restart = true; // the sampler keeps a copy of its parameters (slots, seeds)
+    }
+    if (restart) {
+        startPipeline();
+        maps = true;
+    }
+    if (maps) createShadowMaps();
+}
+
+std::vector<std::pair<std::string, double>> VPLTechnique::frameStats() const
+{
+    std::vector<std::pair<std::string, double>> stats = mPipeline->stats();
+    const VPLSet& set = mPipeline->published();
+    stats.emplace_back("vpls", static_cast<double>(set.validCount()));
+    stats.emplace_back("vpls changed", static_cast<double>(set.changed.size()));
+    stats.emplace_back("shadow map faces", static_cast<double>(mFacesRendered));
+    if (mRender.visibility == VPLRenderParams::RayTraced) stats.emplace_back("cpu gather ms", mRayTracedMilliseconds);
+    return stats;
+}
+
+void VPLTechnique::configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const
+{
+    // Section 5: "The path traced reference images use the same approximation" (untextured VPLs),
+    // and 5.4: the clamped reference clamps as the VPLs are clamped.
+    if (!explicitKeys.count("reference.untexturedBounces")) params.untexturedBounces = !mSMCIR.texturedVPLs;
+    const float clamp = clampGeometry();
+    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
+}
+
+} // namespace vplgi
