@@ -1,7 +1,6 @@
 #include "vpl_shadow_maps.h"
 
 #include <algorithm>
-#include <optional>
 #include <string>
 
 #include "../api/debug.h"
@@ -77,7 +76,7 @@ void VPLShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
 }
 
 void VPLShadowMaps::update(const GpuScene& scene, const VPLSet& vpls, const std::vector<std::uint32_t>& slots,
-                           gl::PassTimer* timer, const Progress& progress)
+                           const Progress& progress)
 {
     mFacesRendered = 0;
     std::vector<std::uint32_t> todo;
@@ -109,11 +108,7 @@ void VPLShadowMaps::update(const GpuScene& scene, const VPLSet& vpls, const std:
             item.normal = glm::vec4(vpl.normal, 0.0f);
             item.slot = glm::ivec4(static_cast<int>(todo[static_cast<std::size_t>(begin + i)]), i, 0, 0);
         }
-        {
-            std::optional<gl::PassTimer::Scope> scope;
-            if (timer) scope.emplace(*timer, "faces");
-            mFaces->renderDirty(scene, batchSlots, matrices);
-        }
+        mFaces->renderDirty(scene, batchSlots, matrices);
         mFacesRendered += 3 * count;
         mBatch.upload(0, static_cast<GLsizeiptr>(items.size() * sizeof(shared::VPLBatchItem)), items.data());
         mFaces->bindForReading();
@@ -128,7 +123,7 @@ void VPLShadowMaps::update(const GpuScene& scene, const VPLSet& vpls, const std:
         program.set("uZFar", mParams.zFar);
         // The next batch re-renders the face atlas, and the shading pass fetches the maps.
         mResample.dispatch(glm::ivec3(mParams.mapSize, mParams.mapSize, count),
-                           NextRead::TextureFetch | NextRead::Framebuffer | NextRead::Image, timer);
+                           NextRead::TextureFetch | NextRead::Framebuffer | NextRead::Image);
         if (progress) progress(begin + count, total);
     }
 }

@@ -51,7 +51,6 @@
 
 #include "../api/objects.h"
 #include "../api/shader_loader.h"
-#include "../api/timer.h"
 #include "../gpu_scene.h"
 #include "compute_pass.h"
 #include "core/vpl/vpl.h"
@@ -78,9 +77,9 @@ public:
 
     // Renders and resamples the maps of `slots` (distinct, < params.slots; invalid VPLs are skipped)
     // from the VPLs in `vpls.slots`. Other maps keep their texels bit for bit. Reports progress per
-    // batch when given; opens scopes "faces" and "resample" in `timer` when given.
+    // batch when given. (Faces and resampling alternate batch by batch: time the whole call.)
     void update(const GpuScene& scene, const VPLSet& vpls, const std::vector<std::uint32_t>& slots,
-                gl::PassTimer* timer = nullptr, const Progress& progress = {});
+                const Progress& progress = {});
     // The paraboloid array at kUnitVPLShadowMaps (nearest sampler).
     void bindForReading() const;
 

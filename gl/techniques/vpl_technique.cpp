@@ -147,7 +147,7 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
             VPLShadowMaps::Progress progress;
             if (mProgress && dirty.size() > 512)
                 progress = [this](int done, int total) { mProgress(std::string(name()) + " shadow maps", done, total); };
-            mShadowMaps->update(*mGpuScene, set, dirty, &frame.timer, progress);
+            mShadowMaps->update(*mGpuScene, set, dirty, progress);
             mFacesRendered = mShadowMaps->facesRendered();
             mMapsGeneration = set.generation;
         }

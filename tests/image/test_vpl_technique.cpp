@@ -7,6 +7,8 @@
 #include <cstring>
 
 #include "core/scene/builtin_scenes.h"
+#include "core/scene/scene_loader.h"
+#include "core/trace/path_tracer.h"
 #include "core/trace/ray_scene.h"
 #include "core/util/params.h"
 #include "core/vpl/vpl_gather.h"
@@ -28,10 +30,12 @@ struct Rendered {
 std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const std::string& name, const Settings& settings)
 {
     std::unique_ptr<Technique> technique = createTechnique(name);
+    RendererParams params;
     ParamSetter setter(settings);
+    params.visitParams(setter);
     technique->visitParams(setter);
     setter.finish();
-    return std::make_unique<Renderer>(test::shaders(), scene, RendererParams{}, std::move(technique));
+    return std::make_unique<Renderer>(test::shaders(), scene, params, std::move(technique));
 }
 
 Rendered renderIndirect(Renderer& renderer, const Camera& camera, int width, int height)
@@ -156,4 +160,94 @@ TEST_CASE("smcir: after 30 moving-light frames the lazily updated maps equal a f
             }
     }
     CHECK(differing == 0);
+}
+
+TEST_CASE("smcir on the furnace: interleaved shading averages to the CPU gather and to rho L_all",
+          "[image][smcir][furnace][numbers]")
+{
+    // Inside a sphere G = 1/(4 R^2) between any two points and nothing is occluded, so every pixel
+    // of an interleaving class sees the same value and an aligned image's mean is the full
+    // estimator exactly (glsl/shared/vpl.h); clamping (G_max far above 1/(4R^2)) does not act.
+    test::ensureGLContext();
+    FurnaceParams furnace;
+    const Scene scene = makeFurnace(furnace);
+    const Camera& camera = scene.cameras[0];
+    const int width = 32, height = 16; // multiples of the 4 x 4 tiles
+    const Settings settings = {{"smcir.vplCount", "4096"},       {"smcir.warmupIterations", "10"},
+                               {"smcir.radiosityBounces", "40"}, // 0.5^40: truncation far below 1%
+                               {"smcir.radiositySamples", "64"}, {"smcir.shadowMapSize", "16"},
+                               {"smcir.filter", "false"},        {"smcir.synchronous", "true"}};
+    std::unique_ptr<Renderer> renderer = makeRenderer(scene, "smcir", settings);
+    const Rendered gpu = renderIndirect(*renderer, camera, width, height);
+
+    RayScene rays(scene);
+    const ImageRGBA32F cpu = renderVPLGather(scene, rays, camera, width, height, gpu.set, VPLGatherParams{});
+    const double expected = furnace.albedo * furnaceRadianceAll(furnace); // indirect = rho * L_all
+    const double againstGather = meanLuminance(gpu.indirect) / meanLuminance(cpu) - 1.0;
+    const double againstClosedForm = meanLuminance(gpu.indirect) / expected - 1.0;
+    MEASURED("smcir furnace, I = 4096, interleaved: mean vs the CPU gather of the same VPLs " << againstGather
+             << ", vs rho L_all " << againstClosedForm);
+    CHECK(std::abs(againstGather) < 5e-5); // measured 1.1e-5: float summation order (GPU vs CPU)
+    // The sampler's own bias at I = 4096 (smcir-rt furnace test: +3.5%); 8% as there.
+    CHECK(std::abs(againstClosedForm) < 0.08);
+}
+
+TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling with bounced light like the path tracer",
+          "[image][smcir][numbers]")
+{
+    // ./scripts/run renders scenes/cornell.json: its technique and settings, paper defaults
+    // (I = 2048, 100 warm-up frames). The ceiling sees no light but bounced light.
+    test::ensureGLContext();
+    const SceneDescription description = loadSceneFile(std::string(VPLGI_SOURCE_DIR) + "/scenes/cornell.json");
+    REQUIRE(description.technique == "smcir");
+    const Scene& scene = description.scene;
+    const Camera& camera = scene.cameras[0];
+    const int width = 48, height = 48;
+    std::unique_ptr<Renderer> renderer = makeRenderer(scene, description.technique, description.settings);
+    const Rendered gpu = renderIndirect(*renderer, camera, width, height);
+
+    // The same part of the light transport from the path tracer: light reflected 1 to 3 times
+    // before the primary hit (the sampler's 3 radiosity bounces), clamped and untextured as the
+    // technique asks (Technique::configureReference).
+    RayScene rays(scene);
+    PathTracerParams reference;
+    reference.mode = PathTracerParams::Mode::Clamped;
+    reference.maxDepth = 4;
+    reference.spp = 1024;
+    reference.jitterPixels = false;
+    renderer->technique().configureReference(reference, {});
+    const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
+
+    // Ceiling pixels: primary hits on a downward-facing surface that does not emit.
+    const glm::mat4 worldFromClip = glm::inverse(camera.clipFromView(1.0f) * camera.viewFromWorld());
+    double smcir = 0.0, path = 0.0;
+    int count = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const glm::vec2 ndc((x + 0.5f) / width * 2.0f - 1.0f, 1.0f - (y + 0.5f) / height * 2.0f);
+            const glm::vec4 a = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
+            const glm::vec4 b = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
+            Ray ray;
+            ray.origin = glm::vec3(a) / a.w;
+            ray.direction = glm::normalize(glm::vec3(b) / b.w - ray.origin);
+            const Hit hit = rays.intersect(ray);
+            if (!hit.valid()) continue;
+            const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
+            if (s.normal.y > -0.9f || glm::dot(s.emission, glm::vec3(1.0f)) > 0.0f) continue;
+            const float* p = gpu.indirect.at(x, y);
+            const float* q = truth.at(x, y);
+            smcir += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            path += 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
+            ++count;
+        }
+    REQUIRE(count > 20);
+    const double relative = smcir / path - 1.0;
+    MEASURED("default scene: ceiling (" << count << " px) mean indirect radiance, smcir " << smcir / count
+             << " vs path tracer " << path / count << ": " << relative);
+    CHECK(smcir > 0.0);
+    // Measured +25%: SMCIR's own bias at I = 2048 (kNN on a blue-noise set over-estimates 1/p;
+    // smcir-rt, the same sampler with ray-traced visibility, is +15% over the whole image, README),
+    // not the GPU half (same VPLs: -0.3%, first test). 0.4 is 1.6x that bias: the bias moves with
+    // the sampler's defaults, and what this guards is a lit ceiling of the right magnitude.
+    CHECK(std::abs(relative) < 0.4);
 }
