@@ -19,8 +19,9 @@ void VPLRenderParams::visitParams(ParamVisitor& v, const std::string& prefix)
     v.choice(prefix + ".shading", shading, {"interleaved", "exhaustive"},
              "interleaved: each pixel of a 4x4 tile gathers 1/16 of the VPLs (section 4); exhaustive: every VPL");
     v.field(prefix + ".interleaveTile", interleaveTile, 1, 16, "interleaving tile size (section 4: 4)");
-    v.choice(prefix + ".visibility", visibility, {"shadowmaps", "raytraced", "none"},
-             "VPL visibility: paraboloid shadow maps (the paper), Embree rays on the CPU, or none");
+    v.choice(prefix + ".visibility", visibility, {"shadowmaps", "raytraced", "none", "probe"},
+             "VPL visibility: paraboloid shadow maps (the paper), Embree rays on the CPU, none, or probe (a "
+             "one-texel fetch in place of the shadow lookup: what the lookups cost)");
     v.field(prefix + ".normalOffset", normalOffset, 0.0f, 64.0f,
             "shadow test: lift the shaded point along its normal by this many map texels (not in the paper)");
     v.field(prefix + ".depthBias", depthBias, 0.0f, 1.0f,
@@ -129,6 +130,7 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
 
     mInterleaved.resize(frame.width, frame.height);
     mFacesRendered = 0;
+    mEvaluations = static_cast<double>(frame.width) * frame.height * validCount / (tile * tile);
     if (mRender.visibility == VPLRenderParams::RayTraced) {
         shadeRayTraced(frame, mInterleaved);
     } else {
@@ -160,7 +162,9 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
         program.set("uTile", tile);
         program.set("uValidCount", validCount);
         program.set("uClampGeometry", clampGeometry());
-        program.set("uVisibility", mRender.visibility == VPLRenderParams::ShadowMaps ? 1 : 0);
+        program.set("uVisibility", mRender.visibility == VPLRenderParams::ShadowMaps   ? 1
+                                   : mRender.visibility == VPLRenderParams::FetchProbe ? 2
+                                                                                       : 0);
         program.set("uMapSize", mShadowMaps->params().mapSize);
         program.set("uMapTilesPerRow", mShadowMaps->layout().tilesPerRow);
         program.set("uNormalOffset", mRender.normalOffset);
@@ -220,6 +224,7 @@ std::vector<std::pair<std::string, double>> VPLTechnique::frameStats() const
     stats.emplace_back("vpls", static_cast<double>(set.validCount()));
     stats.emplace_back("vpls changed", static_cast<double>(set.changed.size()));
     stats.emplace_back("shadow map faces", static_cast<double>(mFacesRendered));
+    stats.emplace_back("light-pixel evaluations", mEvaluations);
     if (mRender.visibility == VPLRenderParams::RayTraced) stats.emplace_back("cpu gather ms", mRayTracedMilliseconds);
     return stats;
 }

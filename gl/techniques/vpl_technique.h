@@ -31,7 +31,8 @@
 //  Visibility modes (<prefix>.visibility): shadowmaps (the paper), raytraced (the same interleaved
 //  estimator evaluated by the CPU gather with Embree visibility; for sequences where re-rendering
 //  every IR map each frame is too slow on a software rasterizer: Table 1 compares VPL
-//  distributions, with visibility held equal), none (no occlusion; a diagnostic).
+//  distributions, with visibility held equal), none (no occlusion; a diagnostic), probe (the shadow
+//  lookup replaced by a fetch of one texel that every pixel reads: what the lookups cost, `vplgi bench`).
 //  Shading modes (<prefix>.shading): interleaved (4 x 4 tiles, the paper) and exhaustive (every
 //  pixel gathers every VPL: Fig. 8's "All VPLs - shadow maps").
 //  Shadow test: the shaded point is lifted along its normal by normalOffset map texels at its
@@ -62,7 +63,7 @@ namespace vplgi {
 // How a VPL set is rendered: shared by smcir and ir (keys "<technique>.<field>").
 struct VPLRenderParams {
     enum Shading { Interleaved, Exhaustive };
-    enum Visibility { ShadowMaps, RayTraced, NoVisibility };
+    enum Visibility { ShadowMaps, RayTraced, NoVisibility, FetchProbe };
     int shadowMapSize = 128;    // paraboloid map resolution (SMCIR section 4: 128 x 128) [4, 4096]
     int shading = Interleaved;  // interleaved (the paper) | exhaustive (every VPL at every pixel)
     int interleaveTile = 4;     // tile size of the interleaving (section 4: 4 x 4) [1, 16]
@@ -120,6 +121,7 @@ private:
     gl::Buffer mVPLBuffer;
     gl::RenderTarget mInterleaved; // the shading pass's output, before the filter
     int mFacesRendered = 0;
+    double mEvaluations = 0.0; // light-pixel pairs the shading pass evaluated (estimated: pixels x n / tile^2)
     double mRayTracedMilliseconds = 0.0;
 };
 
