@@ -39,8 +39,8 @@ void setGrey(ImageRGBA32F& image, int x, int y, float value)
 std::string meshAtPixel(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
                         glm::ivec2 p)
 {
-    const glm::dmat4 worldFromClip = glm::inverse(
-        glm::dmat4(camera.clipFromView(static_cast<float>(width) / static_cast<float>(height)) * camera.viewFromWorld()));
+    const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(
+        camera.clipFromView(static_cast<float>(width) / static_cast<float>(height)) * camera.viewFromWorld()));
     const double ndcX = (p.x + 0.5) / width * 2.0 - 1.0, ndcY = 1.0 - (p.y + 0.5) / height * 2.0;
     const glm::dvec4 far = worldFromClip * glm::dvec4(ndcX, ndcY, 1.0, 1.0);
     Ray ray;
@@ -76,7 +76,8 @@ TEST_CASE("the tracked-pixel reference is bit-identical to the full image's pixe
         const float* expected = image.at(pixels[k].x, pixels[k].y);
         INFO("pixel (" << pixels[k].x << ", " << pixels[k].y << ")");
         // The same sample streams summed in the same order: equal to the last bit, not within noise.
-        for (int c = 0; c < 3; ++c) CHECK(tracked.radiance[k][c] == expected[c]);
+        for (int c = 0; c < 3; ++c)
+            CHECK(tracked.radiance[k][c] == expected[c]);
         nonBlack += tracked.radiance[k].g > 0.0f;
     }
     CHECK(nonBlack >= 3); // the comparison is not between black pixels
@@ -113,7 +114,8 @@ TEST_CASE("indirect tracked pixels: only indirectly lit interiors, spread out, d
         CHECK(((p.x >= 18 && p.x <= 23) || p.x == 28 || p.x == 29));
         CHECK(p.y >= 2);
         CHECK(p.y <= 17);
-        for (std::size_t j = 0; j < i; ++j) closest = std::min(closest, static_cast<double>(glm::length(glm::vec2(p - chosen[j]))));
+        for (std::size_t j = 0; j < i; ++j)
+            closest = std::min(closest, static_cast<double>(glm::length(glm::vec2(p - chosen[j]))));
     }
     // Farthest-point selection over two strips (6 x 16 and 2 x 16): 8 points end up >= 3 pixels apart.
     CHECK(closest >= 3.0);
