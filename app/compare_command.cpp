@@ -3,8 +3,23 @@
 // plots of tracked-pixel luminance over time, like SMCIR Fig. 7) plus metrics.csv / metrics.json.
 //
 // Three steps: parseCompareOptions (every input checked before any GL work), renderFrames (per
-// frame: the reference when the scene state changed, each technique, its errors and tracked
+// frame: the references when the scene state changed, each technique, its errors and tracked
 // pixels) and the report writers of report.h, which take the measured numbers as plain data.
+//
+// Two references (SMCIR 5.2, Table 1 and Fig. 7):
+//  - the full image at --spp samples per pixel, for the image metrics and heat maps (--spp 0: none);
+//  - the tracked pixels only, at --reference-spp samples each (65536 by default; the paper used
+//    692,100), for the temporal metrics |E| and |E'| at the tracked pixels. Reference noise enters
+//    every method's E' and pushes ratios between methods towards 1, so this one is rendered twice
+//    with different seeds: |E'| of one against the other is the reference's own |E'|, which must
+//    be <= 0.2x the smallest |E'| of any method (printed and in the report).
+// Both use the same path-tracer settings: --reference-mode, then what each technique's
+// configureReference asks for (SMCIR: clamped indirect, untextured bounces, its bounce cap), then
+// the reference.* settings given with --set.
+//
+// Tracked pixels (--tracked-choice): `indirect` (the default) picks --tracked pixels in indirectly
+// lit regions of frame 0 from a cheap path-traced estimate (indirectTrackedPixels in
+// core/util/metrics.h says how); `grid` spreads them over the image (trackedPixels).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -53,6 +68,8 @@ struct CompareOptions {
     PathTracerParams reference;               // --reference-mode, --spp, then the reference.* settings
     std::set<std::string> referenceKeys;      // the --set keys the reference used
     int trackedCount = 8;
+    bool trackedIndirect = true;              // --tracked-choice indirect (else grid)
+    int trackedReferenceSpp = 65536;          // --reference-spp
     std::string outDir;
     std::string cache;
 };
@@ -71,8 +88,17 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                  "reference: full, direct, indirect, clamped or onebounce; techniques are compared by the same "
                  "part (indirect, clamped and onebounce: their radiance minus their direct light)",
                  "full");
-    parser.value("spp", "N", "reference samples per pixel", "256");
+    parser.value("spp", "N", "samples per pixel of the full-image reference (image metrics, heat maps); 0: none",
+                 "256");
     parser.value("tracked", "N", "tracked pixels for the temporal metrics (SMCIR uses 8)", "8");
+    parser.value("tracked-choice", "C",
+                 "indirect: tracked pixels in indirectly lit regions of frame 0, well spread; grid: spread over "
+                 "the image",
+                 "indirect");
+    parser.value("reference-spp", "N",
+                 "samples per tracked pixel of the tracked-pixel reference (the temporal metrics; rendered twice, "
+                 "two seeds, to measure its own |E'|)",
+                 "65536");
     parser.value("out", "DIR", "output directory (created)", "out/compare");
     parser.value("cache", "DIR", "reference cache directory ($VPLGI_CACHE_DIR or out/reference-cache)");
     if (!parser.parse(args)) return std::nullopt;
@@ -84,10 +110,16 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.animation = animationOptions(parser, 100000);
     o.size = imageSize(parser, 8, 8192);
     o.trackedCount = parser.getInt("tracked", 1, 64);
+    const std::string choice = parser.get("tracked-choice");
+    require(choice == "indirect" || choice == "grid",
+            "--tracked-choice \"" + choice + "\" must be indirect or grid");
+    o.trackedIndirect = choice == "indirect";
+    o.trackedReferenceSpp = parser.getInt("reference-spp", 1, 1 << 24);
     o.outDir = parser.get("out");
     o.referenceModeName = parser.get("reference-mode");
     o.reference.mode = parseReferenceMode(o.referenceModeName);
-    o.reference.spp = parser.getInt("spp", 1, 1 << 24);
+    o.reference.spp = parser.getInt("spp", 0, 1 << 24); // 0: no full-image reference (checked by visitParams
+                                                         // only when set through reference.spp)
     ParamSetter referenceSetter(o.scene.settings);
     o.reference.visitParams(referenceSetter);
     o.referenceKeys = referenceSetter.usedKeys();
@@ -104,9 +136,67 @@ struct TechniqueRun {
 };
 
 struct FrameLoopResult {
-    std::vector<std::vector<double>> referenceTracked; // [frame][pixel] luminance
+    std::vector<std::vector<double>> referenceTracked;      // [frame][pixel] luminance, first seed
+    std::vector<std::vector<double>> referenceCheckTracked; // [frame][pixel] luminance, second seed
     int referencesRendered = 0;
+    double trackedReferenceSeconds = 0.0; // both seeds, rendered (not cached) frames
 };
+
+// The tracked pixels and how they were chosen (for the report).
+struct TrackedChoice {
+    std::vector<glm::ivec2> pixels;
+    std::string description;
+};
+
+// Samples per pixel and seed of the cheap estimate behind --tracked-choice indirect: enough that the
+// 3x3-averaged direct/indirect ratio is stable, cheap next to one reference frame.
+constexpr int kTrackedEstimateSpp = 16;
+constexpr std::uint32_t kTrackedEstimateSeed = 1;
+
+TrackedChoice chooseTrackedPixels(const CompareOptions& o, Session& lead)
+{
+    TrackedChoice choice;
+    const std::string grid = "grid: spread over the image (trackedPixels)";
+    if (!o.trackedIndirect) {
+        choice.pixels = trackedPixels(o.size.width, o.size.height, o.trackedCount);
+        choice.description = grid;
+        return choice;
+    }
+    lead.applyAnimations(o.animation.timeOf(0));
+    const RayScene rays(lead.scene());
+    PathTracerParams estimate = o.reference;
+    estimate.spp = kTrackedEstimateSpp;
+    estimate.seed = kTrackedEstimateSeed;
+    estimate.timeBudgetSeconds = 0.0;
+    estimate.progress = false;
+    estimate.mode = PathTracerParams::Mode::Direct;
+    const ImageRGBA32F direct =
+        renderReference(lead.scene(), rays, lead.camera(), o.size.width, o.size.height, estimate).image;
+    estimate.mode = PathTracerParams::Mode::Indirect;
+    const ImageRGBA32F indirect =
+        renderReference(lead.scene(), rays, lead.camera(), o.size.width, o.size.height, estimate).image;
+    choice.pixels = indirectTrackedPixels(direct, indirect, o.trackedCount);
+    if (choice.pixels.empty()) {
+        choice.pixels = trackedPixels(o.size.width, o.size.height, o.trackedCount);
+        choice.description = "grid (fallback: fewer than " + std::to_string(o.trackedCount) +
+                             " indirectly lit pixels in frame 0)";
+        std::fprintf(stderr, "tracked pixels: %s\n", choice.description.c_str());
+        return choice;
+    }
+    choice.description = "indirect: indirect >= direct light and >= " + formatNumber(kTrackedMinIndirectFraction) +
+                         "x the 90th percentile of indirect luminance (3x3 means of a " +
+                         std::to_string(kTrackedEstimateSpp) +
+                         " spp path-traced estimate of frame 0, seed " + std::to_string(kTrackedEstimateSeed) +
+                         "), away from the region's edges, farthest-point spread from the centre";
+    return choice;
+}
+
+std::vector<double> luminances(const std::vector<glm::vec3>& radiance)
+{
+    std::vector<double> values;
+    for (const glm::vec3& c : radiance) values.push_back(0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b);
+    return values;
+}
 
 // Technique radiance minus its direct light: the indirect part, for indirect/clamped references.
 ImageRGBA32F indirectPart(const Renderer& renderer)
@@ -134,6 +224,7 @@ std::string comparedPartText(PathTracerParams::Mode mode)
 }
 
 // Renders one frame of one technique and records its errors, tracked pixels and completed timings.
+// `reference` is empty without a full-image reference (--spp 0): no image errors then.
 void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const ImageRGBA32F& reference,
                           const std::vector<glm::ivec2>& tracked, int frame, double exposure)
 {
@@ -142,15 +233,17 @@ void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const Imag
     // GPU timestamp queries publish frames late: take whichever frames completed (the rest after the loop).
     for (const gl::FrameTimes& f : renderer.timer().takeCompletedFrames()) run.frameMilliseconds.push_back(f.total());
     ImageRGBA32F image = comparablePart(renderer, o.reference.mode);
-    run.frameErrors.push_back(compareImages(image, reference, exposure));
+    const bool haveReference = !reference.pixels.empty();
+    if (haveReference) run.frameErrors.push_back(compareImages(image, reference, exposure));
     std::vector<double> values;
     for (glm::ivec2 p : tracked) values.push_back(luminanceAt(image, p));
     run.tracked.push_back(values);
     if (compareKeepsImages(frame, o.animation.frames)) {
         writeImage(o.outDir + "/" + compareImageName(run.name, frame, ".png"), renderer.readDisplay());
         writeImage(o.outDir + "/" + compareImageName(run.name, frame, ".exr"), image);
-        writeImage(o.outDir + "/" + compareImageName(run.name, frame, "-error.png"),
-                   errorHeatMap(image, reference, exposure, 0.25));
+        if (haveReference)
+            writeImage(o.outDir + "/" + compareImageName(run.name, frame, "-error.png"),
+                       errorHeatMap(image, reference, exposure, 0.25));
     }
 }
 
@@ -162,7 +255,8 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
     // The reference follows the first session's scene state (all sessions animate identically).
     Session& lead = *runs.front().session;
     FrameLoopResult result;
-    ImageRGBA32F reference;
+    ImageRGBA32F reference; // stays empty with --spp 0
+    std::vector<double> trackedFirst, trackedSecond;
     std::uint64_t referenceKey = 0;
     for (int frame = 0; frame < o.animation.frames; ++frame) {
         for (TechniqueRun& run : runs) run.session->applyAnimations(o.animation.timeOf(frame));
@@ -171,16 +265,30 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
         hashCamera(state, lead.camera());
         if (frame == 0 || state.digest() != referenceKey) {
             RayScene rays(lead.scene());
-            ReferenceRequest request{lead.scene(), rays, lead.camera(), o.size.width, o.size.height, o.reference,
-                                     o.cache, true};
-            reference = obtainReference(request).image;
+            if (o.reference.spp > 0) {
+                ReferenceRequest request{lead.scene(), rays, lead.camera(), o.size.width, o.size.height, o.reference,
+                                         o.cache, true};
+                reference = obtainReference(request).image;
+            }
+            // The tracked-pixel reference, twice: the second seed only measures the first's noise.
+            PathTracerParams params = o.reference;
+            params.spp = o.trackedReferenceSpp;
+            params.timeBudgetSeconds = 0.0;
+            params.progress = false;
+            PixelReferenceRequest request{lead.scene(), rays, lead.camera(), o.size.width, o.size.height, tracked,
+                                          params, o.cache};
+            const CachedPixelReference first = obtainPixelReference(request);
+            request.params.seed = params.seed + 1;
+            const CachedPixelReference second = obtainPixelReference(request);
+            trackedFirst = luminances(first.radiance);
+            trackedSecond = luminances(second.radiance);
+            result.trackedReferenceSeconds += first.seconds + second.seconds;
             referenceKey = state.digest();
             ++result.referencesRendered;
         }
-        std::vector<double> referenceValues;
-        for (glm::ivec2 p : tracked) referenceValues.push_back(luminanceAt(reference, p));
-        result.referenceTracked.push_back(referenceValues);
-        if (compareKeepsImages(frame, o.animation.frames)) {
+        result.referenceTracked.push_back(trackedFirst);
+        result.referenceCheckTracked.push_back(trackedSecond);
+        if (o.reference.spp > 0 && compareKeepsImages(frame, o.animation.frames)) {
             writeImage(o.outDir + "/" + compareImageName("reference", frame, ".exr"), reference);
             writeImage(o.outDir + "/" + compareImageName("reference", frame, ".png"),
                        toneMapImage(reference, exposure));
@@ -198,11 +306,11 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
 
 // Per technique: errors averaged over frames, temporal errors over the tracked pixels, median frame time.
 CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std::vector<double>>& referenceTracked,
-                                 double exposure)
+                                 double exposure, const Settings& settings)
 {
     CompareTechniqueResult result;
     result.name = run.name;
-    const double frames = static_cast<double>(run.frameErrors.size());
+    const double frames = static_cast<double>(std::max<std::size_t>(1, run.frameErrors.size()));
     for (const ImageErrors& e : run.frameErrors) {
         result.meanErrors.meanAbsToneMapped += e.meanAbsToneMapped / frames;
         result.meanErrors.rmse += e.rmse / frames;
@@ -214,12 +322,16 @@ CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std:
     std::sort(ms.begin(), ms.end());
     result.medianFrameMs = ms.empty() ? 0.0 : ms[ms.size() / 2];
     result.tracked = run.tracked;
+    // The --set overrides this technique's session used (its row's settings in the report).
+    for (const auto& [key, value] : settings)
+        if (run.session->usedKeys().count(key) && key.rfind("reference.", 0) != 0)
+            result.settings += (result.settings.empty() ? "" : " ") + key + "=" + value;
     return result;
 }
 
 // The report's plain data: the inputs that describe the run and each technique's summary.
 CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std::vector<TechniqueRun>& runs,
-                         const FrameLoopResult& loop, const std::vector<glm::ivec2>& tracked, double exposure)
+                         const FrameLoopResult& loop, const TrackedChoice& tracked, double exposure)
 {
     CompareReport report;
     report.sceneSource = scene.source;
@@ -233,9 +345,19 @@ CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std:
     report.referenceSpp = o.reference.spp;
     report.referencesRendered = loop.referencesRendered;
     report.comparedPart = comparedPartText(o.reference.mode);
-    report.trackedPixels = tracked;
+    report.imageMetrics = o.reference.spp > 0;
+    report.referenceSettings = "maxDepth " + std::to_string(o.reference.maxDepth) + ", clampGeometry " +
+                               formatNumber(o.reference.clampGeometry) + " 1/m^2 (clamped mode), untexturedBounces " +
+                               (o.reference.untexturedBounces ? "true" : "false") + ", seed " +
+                               std::to_string(o.reference.seed);
+    report.trackedPixels = tracked.pixels;
+    report.trackedChoice = tracked.description;
     report.referenceTracked = loop.referenceTracked;
-    for (const TechniqueRun& run : runs) report.techniques.push_back(summarize(run, loop.referenceTracked, exposure));
+    report.trackedReferenceSpp = o.trackedReferenceSpp;
+    report.trackedReferenceSeconds = loop.trackedReferenceSeconds;
+    report.referenceSelf = temporalErrors(loop.referenceCheckTracked, loop.referenceTracked, exposure);
+    for (const TechniqueRun& run : runs)
+        report.techniques.push_back(summarize(run, loop.referenceTracked, exposure, o.scene.settings));
     return report;
 }
 
@@ -267,10 +389,12 @@ int runCompare(const std::vector<std::string>& args)
 
     Session& lead = *runs.front().session;
     const double exposure = lead.renderer().params().exposure;
-    const std::vector<glm::ivec2> tracked = trackedPixels(o.size.width, o.size.height, o.trackedCount);
-    const FrameLoopResult loop = renderFrames(o, runs, tracked, exposure);
+    const TrackedChoice tracked = chooseTrackedPixels(o, lead);
+    const FrameLoopResult loop = renderFrames(o, runs, tracked.pixels, exposure);
 
-    writeCompareReport(o.outDir, makeReport(o, lead.scene(), runs, loop, tracked, exposure));
+    const CompareReport report = makeReport(o, lead.scene(), runs, loop, tracked, exposure);
+    writeCompareReport(o.outDir, report);
+    std::printf("%s", compareTemporalSummary(report).c_str());
     std::printf("%s/index.html\n", o.outDir.c_str());
     return 0;
 }

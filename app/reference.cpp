@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include "core/util/content_hash.h"
 #include "core/util/error.h"
@@ -48,7 +49,72 @@ void printProgress(double fraction)
     std::fflush(stderr);
 }
 
+std::string pixelCacheKey(const PixelReferenceRequest& r)
+{
+    Hasher h;
+    h.text("pixels");
+    h.value(hashSceneContent(r.scene));
+    hashCamera(h, r.camera);
+    h.value(r.width);
+    h.value(r.height);
+    for (const glm::ivec2& p : r.pixels) {
+        h.value(p.x);
+        h.value(p.y);
+    }
+    h.text(pathTracerImageKey(r.params));
+    return h.hex();
+}
+
+// One pixel per line, "r g b" as hexadecimal floats (exact round trip). Empty when unreadable.
+std::vector<glm::vec3> readPixelCache(const std::string& path, std::size_t count)
+{
+    std::ifstream in(path);
+    std::vector<glm::vec3> values;
+    std::string r, g, b;
+    while (values.size() < count && in >> r >> g >> b)
+        values.emplace_back(std::strtof(r.c_str(), nullptr), std::strtof(g.c_str(), nullptr),
+                            std::strtof(b.c_str(), nullptr));
+    if (values.size() != count) values.clear();
+    return values;
+}
+
+void writePixelCache(const std::string& path, const std::vector<glm::vec3>& values)
+{
+    // A temporary sibling renamed into place: a cache never holds a half file.
+    const std::string temporary = path + ".partial";
+    {
+        std::ofstream out(temporary);
+        out << std::hexfloat;
+        for (const glm::vec3& v : values) out << v.r << " " << v.g << " " << v.b << "\n";
+        require(out.good(), temporary + ": write failed");
+    }
+    std::filesystem::rename(temporary, path);
+}
+
 } // namespace
+
+CachedPixelReference obtainPixelReference(const PixelReferenceRequest& request)
+{
+    CachedPixelReference result;
+    std::string cachePath;
+    if (!request.cacheDirectory.empty()) {
+        cachePath = request.cacheDirectory + "/" + pixelCacheKey(request) + ".pixels.txt";
+        if (std::filesystem::exists(cachePath)) {
+            result.radiance = readPixelCache(cachePath, request.pixels.size());
+            result.fromCache = !result.radiance.empty();
+            if (result.fromCache) return result;
+        }
+    }
+    PixelReferenceResult rendered = renderReferencePixels(request.scene, request.rays, request.camera, request.width,
+                                                          request.height, request.pixels, request.params);
+    result.radiance = std::move(rendered.radiance);
+    result.seconds = rendered.seconds;
+    if (!cachePath.empty()) {
+        std::filesystem::create_directories(request.cacheDirectory);
+        writePixelCache(cachePath, result.radiance);
+    }
+    return result;
+}
 
 CachedReference obtainReference(const ReferenceRequest& request)
 {

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/util/image_io.h"
 #include "core/trace/path_tracer.h"
@@ -30,6 +33,27 @@ struct CachedReference {
 };
 
 CachedReference obtainReference(const ReferenceRequest& request);
+
+// The reference at chosen pixels only (renderReferencePixels: bit-identical to those pixels of the
+// full image), cached as a small text file keyed like the images plus the pixel list.
+struct PixelReferenceRequest {
+    const Scene& scene;
+    const RayScene& rays;
+    const Camera& camera;
+    int width = 0;
+    int height = 0;
+    std::vector<glm::ivec2> pixels;
+    PathTracerParams params;
+    std::string cacheDirectory; // empty: no cache
+};
+
+struct CachedPixelReference {
+    std::vector<glm::vec3> radiance; // per requested pixel
+    double seconds = 0.0;            // 0 when read from the cache
+    bool fromCache = false;
+};
+
+CachedPixelReference obtainPixelReference(const PixelReferenceRequest& request);
 
 // $VPLGI_CACHE_DIR, else "out/reference-cache".
 std::string defaultReferenceCache();

@@ -136,16 +136,73 @@ bool compareKeepsImages(int frame, int frames)
     return frame == 0 || frame == frames - 1;
 }
 
+ReferenceNoiseCheck referenceNoiseCheck(const CompareReport& report)
+{
+    ReferenceNoiseCheck check;
+    for (const CompareTechniqueResult& t : report.techniques)
+        if (check.smallestName.empty() || t.temporal.meanAbsDerivative < check.smallestEPrime) {
+            check.smallestEPrime = t.temporal.meanAbsDerivative;
+            check.smallestName = t.name;
+        }
+    check.applicable = report.frames > 1 && check.smallestEPrime > 0.0;
+    check.holds = check.applicable && report.referenceSelf.meanAbsDerivative <= kReferenceNoiseRatio * check.smallestEPrime;
+    return check;
+}
+
+namespace {
+
+std::string noiseCheckText(const CompareReport& report)
+{
+    const ReferenceNoiseCheck check = referenceNoiseCheck(report);
+    std::ostringstream text;
+    text << "reference's own |E'| (its second seed against its first) " << formatNumber(report.referenceSelf.meanAbsDerivative)
+         << ", |E| " << formatNumber(report.referenceSelf.meanAbsError) << "; ";
+    if (!check.applicable)
+        text << "the " << kReferenceNoiseRatio << "x check does not apply (one frame, or no technique has |E'| > 0)";
+    else
+        text << "smallest technique |E'| " << formatNumber(check.smallestEPrime) << " (" << check.smallestName
+             << "): reference <= " << kReferenceNoiseRatio << "x it: " << (check.holds ? "yes" : "NO") << " (ratio "
+             << formatNumber(report.referenceSelf.meanAbsDerivative / check.smallestEPrime, 3) << ")";
+    return text.str();
+}
+
+// An image metric, or "" (CSV) / "null" (JSON) / "-" (HTML) without a full-image reference.
+std::string imageMetric(const CompareReport& report, double value, const char* missing)
+{
+    if (!report.imageMetrics) return missing;
+    std::ostringstream s;
+    s << value;
+    return s.str();
+}
+
+} // namespace
+
+std::string compareTemporalSummary(const CompareReport& report)
+{
+    std::ostringstream text;
+    text << "tracked pixels (" << report.trackedChoice << "):";
+    for (const glm::ivec2& p : report.trackedPixels) text << " (" << p.x << "," << p.y << ")";
+    text << "\ntemporal metrics at the tracked pixels (" << report.frames << " frames, reference "
+         << report.trackedReferenceSpp << " spp per pixel, " << formatNumber(report.trackedReferenceSeconds, 3)
+         << " s for both seeds):\n";
+    for (const CompareTechniqueResult& t : report.techniques)
+        text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": |E| "
+             << formatNumber(t.temporal.meanAbsError) << "  |E'| " << formatNumber(t.temporal.meanAbsDerivative) << "\n";
+    text << "  " << noiseCheckText(report) << "\n";
+    return text.str();
+}
+
 std::string compareCsv(const CompareReport& report)
 {
     std::ostringstream csv;
     csv << "technique,frames,mean_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
-           "temporal_abs_e_prime,median_frame_ms\n";
+           "temporal_abs_e_prime,median_frame_ms,settings\n";
     for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
-        csv << t.name << "," << report.frames << "," << mean.meanAbsToneMapped << "," << mean.rmse << ","
-            << mean.relativeMSE << "," << mean.meanRelativeLuminance << "," << t.temporal.meanAbsError << ","
-            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "\n";
+        csv << t.name << "," << report.frames << "," << imageMetric(report, mean.meanAbsToneMapped, "") << ","
+            << imageMetric(report, mean.rmse, "") << "," << imageMetric(report, mean.relativeMSE, "") << ","
+            << imageMetric(report, mean.meanRelativeLuminance, "") << "," << t.temporal.meanAbsError << ","
+            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << t.settings << "\n";
     }
     return csv.str();
 }
@@ -157,13 +214,25 @@ std::string compareJson(const CompareReport& report)
          << ", \"height\": " << report.height << ", \"frames\": " << report.frames
          << ",\n  \"exposure\": " << report.exposure << ",\n  \"reference\": {\"mode\": \"" << report.referenceMode
          << "\", \"spp\": " << report.referenceSpp << ", \"rendered\": " << report.referencesRendered
-         << "},\n  \"techniques\": [\n";
+         << ", \"settings\": \"" << report.referenceSettings << "\"},\n";
+    const ReferenceNoiseCheck check = referenceNoiseCheck(report);
+    json << "  \"tracked\": {\"choice\": \"" << report.trackedChoice << "\", \"pixels\": [";
+    for (std::size_t j = 0; j < report.trackedPixels.size(); ++j)
+        json << (j ? ", " : "") << "[" << report.trackedPixels[j].x << ", " << report.trackedPixels[j].y << "]";
+    json << "],\n    \"referenceSpp\": " << report.trackedReferenceSpp
+         << ", \"referenceSeconds\": " << report.trackedReferenceSeconds
+         << ", \"referenceAbsE\": " << report.referenceSelf.meanAbsError
+         << ", \"referenceAbsEPrime\": " << report.referenceSelf.meanAbsDerivative
+         << ", \"noiseCheckApplies\": " << (check.applicable ? "true" : "false")
+         << ", \"noiseCheckHolds\": " << (check.holds ? "true" : "false") << "},\n  \"techniques\": [\n";
     for (std::size_t i = 0; i < report.techniques.size(); ++i) {
         const CompareTechniqueResult& t = report.techniques[i];
         const ImageErrors& mean = t.meanErrors;
-        json << "    {\"name\": \"" << t.name << "\", \"meanAbsToneMapped\": " << mean.meanAbsToneMapped
-             << ", \"rmse\": " << mean.rmse << ", \"relativeMSE\": " << mean.relativeMSE
-             << ", \"meanLuminanceBias\": " << mean.meanRelativeLuminance
+        json << "    {\"name\": \"" << t.name << "\", \"settings\": \"" << t.settings
+             << "\", \"meanAbsToneMapped\": " << imageMetric(report, mean.meanAbsToneMapped, "null")
+             << ", \"rmse\": " << imageMetric(report, mean.rmse, "null")
+             << ", \"relativeMSE\": " << imageMetric(report, mean.relativeMSE, "null")
+             << ", \"meanLuminanceBias\": " << imageMetric(report, mean.meanRelativeLuminance, "null")
              << ", \"temporalAbsE\": " << t.temporal.meanAbsError
              << ", \"temporalAbsEPrime\": " << t.temporal.meanAbsDerivative
              << ", \"medianFrameMs\": " << t.medianFrameMs
@@ -202,11 +271,15 @@ std::string metricsTableRows(const CompareReport& report)
     std::ostringstream table;
     for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
-        table << "<tr><td>" << htmlEscape(t.name) << "</td><td>" << formatNumber(mean.meanAbsToneMapped)
-              << "</td><td>" << formatNumber(mean.rmse) << "</td><td>" << formatNumber(mean.relativeMSE)
-              << "</td><td>" << formatNumber(100.0 * mean.meanRelativeLuminance, 3) << "%</td><td>"
-              << formatNumber(t.temporal.meanAbsError) << "</td><td>" << formatNumber(t.temporal.meanAbsDerivative)
-              << "</td><td>" << formatNumber(t.medianFrameMs, 4) << "</td></tr>\n";
+        auto cell = [&](double value, int digits = 4, const char* unit = "") {
+            return report.imageMetrics ? formatNumber(value, digits) + unit : std::string("-");
+        };
+        table << "<tr><td>" << htmlEscape(t.name) << "</td><td>" << htmlEscape(t.settings) << "</td><td>"
+              << cell(mean.meanAbsToneMapped) << "</td><td>" << cell(mean.rmse) << "</td><td>"
+              << cell(mean.relativeMSE) << "</td><td>" << cell(100.0 * mean.meanRelativeLuminance, 3, "%")
+              << "</td><td>" << formatNumber(t.temporal.meanAbsError) << "</td><td>"
+              << formatNumber(t.temporal.meanAbsDerivative) << "</td><td>" << formatNumber(t.medianFrameMs, 4)
+              << "</td></tr>\n";
     }
     return table.str();
 }
@@ -215,11 +288,13 @@ std::string metricsTableRows(const CompareReport& report)
 std::string frameFigures(const CompareReport& report, int frame)
 {
     std::ostringstream html;
-    html << "<figure><img src=\"" << compareImageName("reference", frame, ".png")
-         << "\"><figcaption>reference</figcaption></figure>\n";
+    if (report.imageMetrics)
+        html << "<figure><img src=\"" << compareImageName("reference", frame, ".png")
+             << "\"><figcaption>reference</figcaption></figure>\n";
     for (const CompareTechniqueResult& t : report.techniques)
         html << "<figure><img src=\"" << compareImageName(t.name, frame, ".png") << "\"><figcaption>"
              << htmlEscape(t.name) << "</figcaption></figure>\n";
+    if (!report.imageMetrics) return html.str();
     html << "<br>\n";
     for (const CompareTechniqueResult& t : report.techniques)
         html << "<figure><img src=\"" << compareImageName(t.name, frame, "-error.png") << "\"><figcaption>"
@@ -239,13 +314,21 @@ std::string compareHtml(const CompareReport& report)
          << "img{image-rendering:pixelated}</style></head><body>\n";
     html << "<h1>vplgi compare: " << htmlEscape(report.sceneName) << "</h1>\n<p>" << report.width << "x"
          << report.height << ", " << report.frames << " frame(s) at " << report.fps
-         << " fps; reference: Embree path tracer, mode " << htmlEscape(report.referenceMode) << ", "
-         << report.referenceSpp << " spp (" << report.referencesRendered
+         << " fps; reference: Embree path tracer, mode " << htmlEscape(report.referenceMode) << " ("
+         << htmlEscape(report.referenceSettings) << "), full image "
+         << (report.imageMetrics ? std::to_string(report.referenceSpp) + " spp" : std::string("not rendered (--spp 0)"))
+         << ", tracked pixels " << report.trackedReferenceSpp << " spp each ("
+         << report.referencesRendered
          << " distinct reference frame(s)); tone mapping for |E|: Reinhard on luminance at exposure "
-         << report.exposure << ". Tracked pixels: " << report.trackedPixels.size() << ". Metrics compare "
-         << report.comparedPart << " with the reference; the images show the whole display image.</p>\n";
-    html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>mean |E| (tone-mapped)</th><th>RMSE</th>"
-         << "<th>rel. MSE</th>"
+         << report.exposure << ". Metrics compare " << report.comparedPart
+         << " with the reference; the images show the whole display image.</p>\n";
+    html << "<p>Tracked pixels (" << report.trackedPixels.size() << "): " << htmlEscape(report.trackedChoice) << ":";
+    for (const glm::ivec2& p : report.trackedPixels) html << " (" << p.x << ", " << p.y << ")";
+    html << ". Their temporal metrics (SMCIR Table 1: average |E| and |E'| after Reinhard tone mapping, eq. 10) "
+         << "are measured against the tracked-pixel reference; the image metrics against the full-image one.</p>\n";
+    html << "<p>Reference noise: " << htmlEscape(noiseCheckText(report)) << ".</p>\n";
+    html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>settings (--set)</th><th>mean |E| (tone-mapped)</th>"
+         << "<th>RMSE</th><th>rel. MSE</th>"
          << "<th>mean luminance bias</th><th>avg |E| tracked</th><th>avg |E'| tracked (SMCIR eq. 10)</th>"
          << "<th>median frame [ms]</th></tr>\n"
          << metricsTableRows(report) << "</table>\n<p>All numbers: <a href=\"metrics.csv\">metrics.csv</a>, "

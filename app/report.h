@@ -34,9 +34,10 @@ std::string formatNumber(double value, int significant = 4);
 struct CompareTechniqueResult {
     std::string name;
     ImageErrors meanErrors;                   // averaged over frames
-    TemporalErrors temporal;                  // at the tracked pixels
+    TemporalErrors temporal;                  // at the tracked pixels, against the tracked-pixel reference
     double medianFrameMs = 0.0;
     std::vector<std::vector<double>> tracked; // [frame][pixel] luminance
+    std::string settings;                     // the --set overrides its session used, "key=value ..."
 };
 
 // Everything the compare report shows besides the images (written while rendering, named by
@@ -47,13 +48,32 @@ struct CompareReport {
     float fps = 0.0f;
     double exposure = 1.0;     // of the tone mapping behind |E| and the PNGs
     std::string referenceMode; // as given on the command line
-    int referenceSpp = 0;
+    std::string referenceSettings; // the path tracer's effective settings, e.g. "maxDepth 4, ..."
+    int referenceSpp = 0;       // of the full-image reference
+    bool imageMetrics = true;   // false without a full-image reference (--spp 0): no image errors
     int referencesRendered = 0; // distinct reference frames
     std::string comparedPart;   // what the metrics compare, e.g. "each technique's direct light"
     std::vector<glm::ivec2> trackedPixels;
-    std::vector<std::vector<double>> referenceTracked; // [frame][pixel] luminance
+    std::string trackedChoice;  // how the tracked pixels were chosen
+    int trackedReferenceSpp = 0;            // samples per tracked pixel of the tracked-pixel reference
+    double trackedReferenceSeconds = 0.0;   // its render time, both seeds, all frames [s]
+    std::vector<std::vector<double>> referenceTracked; // [frame][pixel] luminance (first seed)
+    TemporalErrors referenceSelf;           // the second seed's run against the first: its own |E|, |E'|
     std::vector<CompareTechniqueResult> techniques;
 };
+
+// Whether the tracked-pixel reference is quiet enough: its own |E'| <= 0.2x the smallest |E'| of
+// any technique. Not applicable with one frame (no E') or when every technique has |E'| = 0.
+struct ReferenceNoiseCheck {
+    bool applicable = false;
+    bool holds = false;
+    double smallestEPrime = 0.0;
+    std::string smallestName;
+};
+constexpr double kReferenceNoiseRatio = 0.2;
+ReferenceNoiseCheck referenceNoiseCheck(const CompareReport& report);
+// A few lines for stdout: Table 1's columns per technique, the reference's own |E'| and the check.
+std::string compareTemporalSummary(const CompareReport& report);
 
 // "images/<who>-f0007<suffix>": who is "reference" or a technique, suffix e.g. ".png", "-error.png".
 std::string compareImageName(const std::string& who, int frame, const std::string& suffix);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -672,6 +673,64 @@ ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const 
         result.image.pixels[4 * i + 3] = 1.0f;
     }
     result.seconds = elapsed();
+    return result;
+}
+
+PixelReferenceResult renderReferencePixels(const Scene& scene, const RayScene& rays, const Camera& camera, int width,
+                                           int height, const std::vector<glm::ivec2>& pixels,
+                                           const PathTracerParams& params, ProgressCallback progress)
+{
+    assert(&rays.scene() == &scene && "the RayScene must be built from this scene");
+    checkParams(width, height, params);
+    for (const glm::ivec2& p : pixels)
+        require(p.x >= 0 && p.y >= 0 && p.x < width && p.y < height,
+                "reference: pixel (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ") is outside the " +
+                    std::to_string(width) + "x" + std::to_string(height) + " image");
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+
+    const Integrator integrator(scene, rays, scene.lights, params);
+    const CameraRays cameraRays(camera, width, height);
+    std::vector<glm::dvec3> sums(pixels.size(), glm::dvec3(0.0));
+    // A handful of pixels cannot keep the threads busy: batches of samples of every pixel run in
+    // parallel into a buffer, then each pixel adds its batch in sample order, exactly as
+    // renderReference's per-pixel loop adds them (the same sums, so the same bits).
+    const int batch = std::min(params.spp, 16384);
+    std::vector<glm::vec3> values(pixels.size() * static_cast<std::size_t>(batch));
+    for (int first = 0; first < params.spp; first += batch) {
+        const int count = std::min(batch, params.spp - first);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels.size() * static_cast<std::size_t>(count), 256),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                                  const std::size_t k = i / static_cast<std::size_t>(count);
+                                  const int s = first + static_cast<int>(i % static_cast<std::size_t>(count));
+                                  const glm::ivec2 p = pixels[k];
+                                  const std::size_t pixel = static_cast<std::size_t>(p.y) * width + p.x;
+                                  Pcg32 rng = sampleStream(params.seed, static_cast<std::uint32_t>(pixel),
+                                                           static_cast<std::uint32_t>(s));
+                                  const float u = rng.uniform(); // as renderReference: both drawn either way
+                                  const float v = rng.uniform();
+                                  const float jitterX = params.jitterPixels ? u : 0.5f;
+                                  const float jitterY = params.jitterPixels ? v : 0.5f;
+                                  values[k * static_cast<std::size_t>(batch) + (s - first)] =
+                                      integrator.radiance(cameraRays.at(p.x + jitterX, p.y + jitterY), rng);
+                              }
+                          });
+        for (std::size_t k = 0; k < pixels.size(); ++k)
+            for (int s = 0; s < count; ++s) {
+                const glm::vec3& L = values[k * static_cast<std::size_t>(batch) + s];
+                if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sums[k] += glm::dvec3(L);
+            }
+        if (progress) progress(static_cast<double>(first + count) / params.spp);
+    }
+
+    PixelReferenceResult result;
+    result.spp = params.spp;
+    // As renderReference: the double sum divided by the count, then rounded to float.
+    for (const glm::dvec3& sum : sums)
+        result.radiance.emplace_back(static_cast<float>(sum.x / params.spp), static_cast<float>(sum.y / params.spp),
+                                     static_cast<float>(sum.z / params.spp));
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
 }
 

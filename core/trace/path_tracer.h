@@ -120,6 +120,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -182,6 +183,21 @@ using ProgressCallback = std::function<void(double fraction)>;
 // Throws Error for bad sizes or parameters.
 ReferenceResult renderReference(const Scene& scene, const RayScene& rays, const Camera& camera, int width, int height,
                                 const PathTracerParams& params, ProgressCallback progress = {});
+
+// The same estimate as renderReference, but only at the given pixels (SMCIR 5.2: "ground truth
+// values for these pixels", the tracked pixels of the temporal metrics): pixel (x, y) of a
+// width x height image uses the same sample streams and sums its samples in the same order, so each
+// value is bit-identical to that pixel of renderReference's image for the same parameters.
+// params.timeBudgetSeconds is ignored (every pixel gets params.spp samples). Throws Error for
+// pixels outside the image or bad parameters.
+struct PixelReferenceResult {
+    std::vector<glm::vec3> radiance; // per requested pixel [W/(m^2 sr)], linear RGB
+    int spp = 0;
+    double seconds = 0; // wall-clock time [s]
+};
+PixelReferenceResult renderReferencePixels(const Scene& scene, const RayScene& rays, const Camera& camera, int width,
+                                           int height, const std::vector<glm::ivec2>& pixels,
+                                           const PathTracerParams& params, ProgressCallback progress = {});
 
 // --- Reflected radiance at a surface point (the radiance of a VPL, SMCIR 3.2.3) ------------------
 

@@ -136,4 +136,85 @@ std::vector<glm::ivec2> trackedPixels(int width, int height, int count)
     return pixels;
 }
 
+namespace {
+
+// Luminance averaged over the 3x3 neighbourhood; 0 on the one-pixel border (no full neighbourhood).
+std::vector<double> boxedLuminance(const ImageRGBA32F& image)
+{
+    const int w = image.width, h = image.height;
+    std::vector<double> y(static_cast<std::size_t>(w) * h, 0.0), boxed(y.size(), 0.0);
+    for (std::size_t p = 0; p < y.size(); ++p) {
+        const float* c = &image.pixels[p * 4];
+        y[p] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    }
+    for (int py = 1; py + 1 < h; ++py)
+        for (int px = 1; px + 1 < w; ++px) {
+            double sum = 0.0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) sum += y[static_cast<std::size_t>(py + dy) * w + px + dx];
+            boxed[static_cast<std::size_t>(py) * w + px] = sum / 9.0;
+        }
+    return boxed;
+}
+
+} // namespace
+
+std::vector<glm::ivec2> indirectTrackedPixels(const ImageRGBA32F& direct, const ImageRGBA32F& indirect, int count)
+{
+    requireSameSize(direct, indirect);
+    const int w = direct.width, h = direct.height;
+    const std::vector<double> d = boxedLuminance(direct), n = boxedLuminance(indirect);
+
+    // Step 2: the absolute floor from the 90th percentile of the positive indirect luminances.
+    std::vector<double> positive;
+    for (double v : n)
+        if (v > 0.0) positive.push_back(v);
+    if (positive.empty()) return {};
+    const std::size_t rank = static_cast<std::size_t>(0.9 * static_cast<double>(positive.size() - 1));
+    std::nth_element(positive.begin(), positive.begin() + static_cast<std::ptrdiff_t>(rank), positive.end());
+    const double floor = kTrackedMinIndirectFraction * positive[rank];
+    std::vector<char> lit(n.size(), 0);
+    for (std::size_t p = 0; p < n.size(); ++p) lit[p] = n[p] > 0.0 && n[p] >= d[p] && n[p] >= floor;
+
+    // Step 3: erode by the 3x3 neighbourhood (border pixels are never lit: their boxes are 0).
+    std::vector<glm::ivec2> candidates, litPixels;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!lit[static_cast<std::size_t>(y) * w + x]) continue;
+            litPixels.push_back({x, y});
+            bool inside = true;
+            for (int dy = -1; dy <= 1 && inside; ++dy)
+                for (int dx = -1; dx <= 1 && inside; ++dx) {
+                    const int qx = x + dx, qy = y + dy;
+                    inside = qx >= 0 && qy >= 0 && qx < w && qy < h && lit[static_cast<std::size_t>(qy) * w + qx];
+                }
+            if (inside) candidates.push_back({x, y});
+        }
+    if (static_cast<int>(candidates.size()) < count) candidates = litPixels;
+    if (static_cast<int>(candidates.size()) < count) return {};
+
+    // Step 4: farthest-point selection from the candidate nearest the centre (strict comparisons
+    // keep the first in row-major order on ties).
+    auto distance2 = [](glm::ivec2 a, glm::dvec2 b) {
+        const double dx = a.x - b.x, dy = a.y - b.y;
+        return dx * dx + dy * dy;
+    };
+    const glm::dvec2 centre(0.5 * (w - 1), 0.5 * (h - 1));
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < candidates.size(); ++i)
+        if (distance2(candidates[i], centre) < distance2(candidates[first], centre)) first = i;
+    std::vector<glm::ivec2> chosen{candidates[first]};
+    std::vector<double> nearest(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i) nearest[i] = distance2(candidates[i], glm::dvec2(chosen[0]));
+    while (static_cast<int>(chosen.size()) < count) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < candidates.size(); ++i)
+            if (nearest[i] > nearest[best]) best = i;
+        chosen.push_back(candidates[best]);
+        for (std::size_t i = 0; i < candidates.size(); ++i)
+            nearest[i] = std::min(nearest[i], distance2(candidates[i], glm::dvec2(candidates[best])));
+    }
+    return chosen;
+}
+
 } // namespace vplgi

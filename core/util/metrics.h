@@ -45,4 +45,23 @@ TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
 // Evenly spread tracked pixels (deterministic): a jittered grid of `count` pixels away from borders.
 std::vector<glm::ivec2> trackedPixels(int width, int height, int count);
 
+// Tracked pixels in indirectly lit regions (SMCIR 5.2 tracks pixels whose indirect light it
+// measures), chosen from cheap estimates of the first frame's direct and indirect radiance (the
+// path tracer's Direct and Indirect modes at a few samples per pixel, fixed seed):
+//  1. D, N: the luminance of `direct` and `indirect`, each averaged over the pixel's 3x3
+//     neighbourhood (a few-sample estimate is noisy; the box also keeps away from the image border).
+//  2. A pixel is indirectly lit when N >= D (indirect light is at least half of its total) and
+//     N >= kTrackedMinIndirectFraction x the 90th percentile of N over the pixels with N > 0 (not
+//     tiny in absolute terms: dark corners would make |E| meaninglessly small).
+//  3. Candidates: pixels whose whole 3x3 neighbourhood is indirectly lit (away from the region's
+//     edges, where a pixel centre and a jittered reference see different surfaces). With fewer than
+//     `count` of them, the indirectly lit pixels themselves.
+//  4. Farthest-point selection: the candidate nearest the image centre first, then repeatedly the
+//     candidate farthest from every chosen one (ties: the first in row-major order).
+// Deterministic for given images. Returns fewer than `count` pixels (possibly none) only when
+// fewer than `count` pixels are indirectly lit; the caller then falls back to trackedPixels().
+// Throws Error when the images differ in size.
+constexpr double kTrackedMinIndirectFraction = 0.1;
+std::vector<glm::ivec2> indirectTrackedPixels(const ImageRGBA32F& direct, const ImageRGBA32F& indirect, int count);
+
 } // namespace vplgi

@@ -82,6 +82,9 @@ void SMCIRRayTracedTechnique::configureReference(PathTracerParams& params, const
     // 5.4: the clamped reference clamps as the VPLs are clamped.
     const float clamp = computeClampGeometry(mParams, mRays->sceneScale());
     if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
+    // The same bounce cap: the reflection at the primary hit plus the VPL radiosity paths' bounces
+    // (which count the reflection at the VPL), as the sampler's test against the path tracer does.
+    if (!explicitKeys.count("reference.maxDepth")) params.maxDepth = 1 + mParams.radiosityBounces;
 }
 
 std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats() const

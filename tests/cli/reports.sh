@@ -34,7 +34,7 @@ ref $base --time-budget 1000
 grep -q "from cache" "$work/m.log" || { echo "FAIL: a time budget alone missed the cache"; cat "$work/m.log"; exit 1; }
 echo "reference: every changed input misses the cache, a time budget alone does not"
 
-"$vplgi" compare --scene "$here/scenes/cornell.json" --techniques direct --width 48 --height 48 --spp 8 \
+"$vplgi" compare --scene "$here/scenes/cornell.json" --techniques direct --width 48 --height 48 --spp 8 --reference-spp 64 \
   --cache "$cache" --out "$work/cmp" > "$work/c.log" 2>&1
 for part in '<table' 'images/reference-f0000.png' 'images/direct-f0000.png' 'images/direct-f0000-error.png' \
             'luminance-pixel0.svg' 'metrics.csv'; do
@@ -55,7 +55,7 @@ PY
 echo "compare: report complete"
 
 # Along an animation where a light moves every frame, every frame gets its own reference.
-"$vplgi" compare --scene "$here/scenes/maze.json" --techniques direct --frames 3 --width 32 --height 24 --spp 2 \
+"$vplgi" compare --scene "$here/scenes/maze.json" --techniques direct --frames 3 --width 32 --height 24 --spp 2 --reference-spp 16 \
   --cache "$cache" --out "$work/anim" > "$work/a.log" 2>&1
 python3 - "$work/anim/metrics.json" <<'PY'
 import json, sys
@@ -66,7 +66,7 @@ PY
 echo "compare: one reference per animated frame"
 
 # Against an indirect reference, a technique is judged by its indirect part: direct has none.
-"$vplgi" compare --scene cornell --techniques direct --reference-mode indirect --width 24 --height 24 --spp 4 \
+"$vplgi" compare --scene cornell --techniques direct --reference-mode indirect --width 24 --height 24 --spp 4 --reference-spp 64 \
   --cache "$cache" --out "$work/ind" > "$work/i.log" 2>&1
 python3 - "$work/ind/metrics.json" <<'PY'
 import json, sys

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# vplgi compare's temporal experiment (SMCIR Table 1) end to end at tiny sizes: tracked pixels in
+# indirectly lit regions, the tracked-pixel reference (two seeds, its own |E'| and the 0.2x check,
+# cached), per-row technique settings, --spp 0 (no full-image reference) and --tracked-choice grid.
+set -eu
+vplgi="$1"
+here="$(cd "$(dirname "$0")/../.." && pwd)"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cache="$work/cache"
+
+args=(--scene "$here/scenes/cornell-moving-light.json" --techniques smcir-rt --reference-mode clamped --frames 3
+      --width 32 --height 18 --reference-spp 256 --set smcir.vplCount=64 --cache "$cache")
+"$vplgi" compare "${args[@]}" --spp 0 --out "$work/a" > "$work/a.log" 2> "$work/a.err"
+grep -q "reference's own |E'|" "$work/a.log"
+grep -Eq "reference <= 0.2x it: (yes|NO)" "$work/a.log"
+grep -q "Reference noise" "$work/a/index.html"
+python3 - "$work/a/metrics.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+tr = d["tracked"]
+assert tr["choice"].startswith("indirect"), tr
+assert len(tr["pixels"]) == 8 and len({tuple(p) for p in tr["pixels"]}) == 8, tr
+assert all(1 <= x <= 30 and 1 <= y <= 16 for x, y in tr["pixels"]), tr  # never on the border
+assert tr["referenceSpp"] == 256 and tr["referenceSeconds"] > 0, tr
+assert tr["noiseCheckApplies"] is True and tr["referenceAbsEPrime"] > 0, tr
+t = d["techniques"][0]
+assert t["name"] == "smcir-rt" and t["settings"] == "smcir.vplCount=64", t
+assert t["meanAbsToneMapped"] is None and 0 < t["temporalAbsE"] < 1 and t["temporalAbsEPrime"] > 0, t
+assert d["reference"]["spp"] == 0 and "maxDepth 4" in d["reference"]["settings"], d["reference"]
+PY
+test ! -e "$work/a/images/reference-f0000.png"
+echo "temporal: indirect tracked pixels, two-seed reference, check and settings in the report"
+
+# The same run again: the tracked-pixel references come from the cache and every number repeats.
+"$vplgi" compare "${args[@]}" --spp 0 --out "$work/b" > "$work/b.log" 2> "$work/b.err"
+python3 - "$work/a/metrics.json" "$work/b/metrics.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+assert b["tracked"]["referenceSeconds"] == 0, b["tracked"]
+for k in ("pixels", "referenceAbsE", "referenceAbsEPrime"):
+    assert a["tracked"][k] == b["tracked"][k], k
+for k in ("temporalAbsE", "temporalAbsEPrime"):
+    assert a["techniques"][0][k] == b["techniques"][0][k], k
+PY
+echo "temporal: tracked-pixel references cached, results repeat"
+
+# The grid choice and a full-image reference (image metrics back).
+"$vplgi" compare "${args[@]}" --tracked-choice grid --tracked 4 --spp 2 --out "$work/g" > "$work/g.log" 2> "$work/g.err"
+python3 - "$work/g/metrics.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["tracked"]["choice"].startswith("grid") and len(d["tracked"]["pixels"]) == 4, d["tracked"]
+assert 0 < d["techniques"][0]["meanAbsToneMapped"] < 1, d["techniques"][0]
+PY
+test -s "$work/g/images/reference-f0000.png"
+test -s "$work/g/images/smcir-rt-f0002-error.png"
+echo "temporal: grid choice, full-image reference"
+
+if "$vplgi" compare "${args[@]}" --tracked-choice random --out "$work/x" 2> "$work/e.log"; then exit 1; fi
+grep -q 'must be indirect or grid' "$work/e.log"
+test ! -e "$work/x"
+echo "temporal checks passed"
