@@ -67,6 +67,15 @@ float computeClampGeometry(const SMCIRParams& params, float sceneDiagonal)
     return 1.0f / (d * d);
 }
 
+void configureSMCIRReference(const SMCIRParams& params, float sceneDiagonal, PathTracerParams& reference,
+                             const std::set<std::string>& explicitKeys)
+{
+    if (!explicitKeys.count("reference.untexturedBounces")) reference.untexturedBounces = !params.texturedVPLs;
+    const float clamp = computeClampGeometry(params, sceneDiagonal);
+    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) reference.clampGeometry = clamp;
+    if (!explicitKeys.count("reference.maxDepth")) reference.maxDepth = 1 + params.radiosityBounces;
+}
+
 int computeRenderingK(int vplCount)
 {
     // Eq. (8), read as k = max(1, floor(sqrt(I / 32))) (papers/README.md, MATH.md 2).

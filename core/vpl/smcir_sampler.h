@@ -145,11 +145,14 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <set>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/scene/frame_snapshot.h"
+#include "core/trace/path_tracer.h"
 #include "core/trace/ray_scene.h"
 #include "core/vpl/vpl_pipeline.h"
 #include "core/scene/scene.h"
@@ -200,6 +203,13 @@ struct SMCIRParams {
 
 // Eq. (8) as papers/README.md reads it: k = max(1, floor(sqrt(I / 32))). 4 at 512, 8 at 2048.
 int computeRenderingK(int vplCount);
+
+// What a path-traced reference must simulate to be compared with SMCIR (smcir, smcir-rt): section 5
+// "The path traced reference images use the same approximation" (untextured bounces), 5.4 the same
+// clamp, and the same bounce cap (the reflection at the primary hit plus the radiosity paths'
+// bounces, which count the reflection at the VPL). Keys in `explicitKeys` (reference.*) are left.
+void configureSMCIRReference(const SMCIRParams& params, float sceneDiagonal, PathTracerParams& reference,
+                             const std::set<std::string>& explicitKeys);
 
 // G_max [1/m^2] of VPL clamping for a scene of diagonal D [m] (0 = no clamping): d = clampScale D /
 // sqrt(I), G_max = 1/d^2. d follows the expected spacing of I VPLs on the scene's surfaces, so the

@@ -77,14 +77,7 @@ void SMCIRRayTracedTechnique::applyParamChanges(const std::set<std::string>& cha
 
 void SMCIRRayTracedTechnique::configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const
 {
-    // Section 5: "The path traced reference images use the same approximation" (untextured VPLs).
-    if (!explicitKeys.count("reference.untexturedBounces")) params.untexturedBounces = !mParams.texturedVPLs;
-    // 5.4: the clamped reference clamps as the VPLs are clamped.
-    const float clamp = computeClampGeometry(mParams, mRays->sceneScale());
-    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
-    // The same bounce cap: the reflection at the primary hit plus the VPL radiosity paths' bounces
-    // (which count the reflection at the VPL), as the sampler's test against the path tracer does.
-    if (!explicitKeys.count("reference.maxDepth")) params.maxDepth = 1 + mParams.radiosityBounces;
+    configureSMCIRReference(mParams, mRays->sceneScale(), params, explicitKeys);
 }
 
 std::vector<std::pair<std::string, double>> SMCIRRayTracedTechnique::frameStats() const

@@ -231,11 +231,7 @@ std::vector<std::pair<std::string, double>> VPLTechnique::frameStats() const
 
 void VPLTechnique::configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const
 {
-    // Section 5: "The path traced reference images use the same approximation" (untextured VPLs),
-    // and 5.4: the clamped reference clamps as the VPLs are clamped.
-    if (!explicitKeys.count("reference.untexturedBounces")) params.untexturedBounces = !mSMCIR.texturedVPLs;
-    const float clamp = clampGeometry();
-    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
+    configureSMCIRReference(mSMCIR, mRays->sceneScale(), params, explicitKeys);
 }
 
 } // namespace vplgi

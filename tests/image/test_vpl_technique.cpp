@@ -212,7 +212,6 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     RayScene rays(scene);
     PathTracerParams reference;
     reference.mode = PathTracerParams::Mode::Clamped;
-    reference.maxDepth = 4;
     reference.spp = 1024;
     reference.jitterPixels = false;
     renderer->technique().configureReference(reference, {});
