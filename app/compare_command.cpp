@@ -81,7 +81,10 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                         "moves; references are cached) and writes DIR/index.html with images, error heat maps,\n"
                         "a metrics table and tracked-pixel luminance plots, plus metrics.csv and metrics.json.");
     addSceneOptions(parser, "set a parameter of the renderer, a technique or reference.*");
-    parser.value("techniques", "A,B,...", "techniques to compare", "direct");
+    parser.value("techniques", "A,B,...",
+                 "techniques to compare; a variant with its own settings is written name[key=value;key=value], "
+                 "e.g. smcir[smcir.shading=exhaustive]",
+                 "direct");
     addSizeOptions(parser, "image", 320, 180);
     addAnimationOptions(parser, "frames to render and compare", 1);
     parser.value("reference-mode", "M",
@@ -128,7 +131,8 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
 }
 
 struct TechniqueRun {
-    std::string name;
+    std::string name;   // as given to --techniques (a variant keeps its brackets)
+    Settings settings;  // --set plus the variant's own
     std::unique_ptr<Session> session;
     std::vector<ImageErrors> frameErrors;
     std::vector<std::vector<double>> tracked; // [frame][pixel] luminance
@@ -357,7 +361,7 @@ CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std:
     report.trackedReferenceSeconds = loop.trackedReferenceSeconds;
     report.referenceSelf = temporalErrors(loop.referenceCheckTracked, loop.referenceTracked, exposure);
     for (const TechniqueRun& run : runs)
-        report.techniques.push_back(summarize(run, loop.referenceTracked, exposure, o.scene.settings));
+        report.techniques.push_back(summarize(run, loop.referenceTracked, exposure, run.settings));
     return report;
 }
 
@@ -370,13 +374,33 @@ int runCompare(const std::vector<std::string>& args)
     CompareOptions& o = *parsed;
 
     std::unique_ptr<gl::Context> context; // outlives the sessions' GL objects
+    // "name[key=value;...]": technique `name` with these settings after the --set ones.
+    std::vector<std::string> names;
+    std::vector<Settings> perRun;
+    for (const std::string& entry : o.techniques) {
+        require(std::count(o.techniques.begin(), o.techniques.end(), entry) == 1,
+                "--techniques: \"" + entry + "\" given twice");
+        Settings settings = o.scene.settings;
+        const std::size_t open = entry.find('[');
+        if (open == std::string::npos) {
+            names.push_back(entry);
+        } else {
+            require(entry.back() == ']' && open > 0,
+                    "--techniques: \"" + entry + "\" must be name or name[key=value;key=value]");
+            names.push_back(entry.substr(0, open));
+            std::stringstream list(entry.substr(open + 1, entry.size() - open - 2));
+            for (std::string item; std::getline(list, item, ';');)
+                if (!item.empty()) settings.push_back(parseSetting(item));
+        }
+        perRun.push_back(settings);
+    }
     std::vector<std::unique_ptr<Session>> sessions =
-        createSessions(o.scene.sceneSpec, o.scene.camera, o.techniques,
-                       std::vector<Settings>(o.techniques.size(), o.scene.settings), o.referenceKeys);
+        createSessions(o.scene.sceneSpec, o.scene.camera, names, perRun, o.referenceKeys);
     std::vector<TechniqueRun> runs;
     for (std::size_t i = 0; i < o.techniques.size(); ++i) {
         TechniqueRun run;
         run.name = o.techniques[i];
+        run.settings = perRun[i];
         run.session = std::move(sessions[i]);
         runs.push_back(std::move(run));
     }

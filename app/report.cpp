@@ -1,3 +1,4 @@
+#include <cctype>
 #include "report.h"
 
 #include <algorithm>
@@ -128,7 +129,11 @@ std::string compareImageName(const std::string& who, int frame, const std::strin
 {
     char b[32];
     std::snprintf(b, sizeof b, "f%04d", frame);
-    return "images/" + who + "-" + b + suffix;
+    // Variants ("smcir[smcir.shading=exhaustive]") keep only file-name-safe characters.
+    std::string safe = who;
+    for (char& c : safe)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    return "images/" + safe + "-" + b + suffix;
 }
 
 bool compareKeepsImages(int frame, int frames)
