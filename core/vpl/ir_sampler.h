@@ -65,7 +65,7 @@
 //  The budget (issue 9 part 4: "report how much of it photons that leave the scene leave unused").
 //  The I slots are filled by deposits; every path emitted counts in N, including those that never
 //  deposit anything. Those "escaped" paths (the first ray left the scene, or ended on the back of a
-//  single-sided surface) carry flux that lights nothing the camera could see: stat "ir: escaped
+//  single-sided surface or on a black one) carry flux that lights nothing the camera could see: stat "ir: escaped
 //  fraction" = escaped paths / N is the part of the emitted power, and of the work, that the
 //  budget spent on nothing. A closed scene (the furnace) reports 0. N is a stopping time (paths are
 //  emitted until the slots are full), which biases the estimate by O(1/N), and the last path's
@@ -130,7 +130,7 @@ struct IRParams {
 // What one initialize() or step() did.
 struct IRStats {
     std::uint64_t paths = 0;        // N: light paths emitted (the 1/N of the flux)
-    std::uint64_t pathsEscaped = 0; // paths that deposited nothing (left the scene or hit a back face)
+    std::uint64_t pathsEscaped = 0; // paths that deposited nothing (left the scene, back face, black)
     std::uint64_t rays = 0;         // Embree rays cast (traced paths, including discarded batch tails)
     int vpls = 0;                   // n: VPLs deposited (valid slots)
     int moved = 0;                  // slots listed in VPLSet::changed
