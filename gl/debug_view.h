@@ -31,15 +31,15 @@ namespace vplgi {
 //               {"vsgl.flux", "RSM flux of light 0", rsmFluxOrNull(), shared::kDebugViewColor}};
 //   }
 struct DebugView {
-    std::string name;                // "<technique>.<what>", e.g. "smcir.atlas"; unique, stable
-    std::string description;         // one line, for listings and the viewer
+    std::string name;                     // "<technique>.<what>", e.g. "smcir.atlas"; unique, stable
+    std::string description;              // one line, for listings and the viewer
     const gl::Texture* texture = nullptr; // null (or not yet created): shows black
-    int kind = 0;                    // shared::kDebugView*
-    glm::vec2 range{0.0f, 1.0f};     // scalar: the values shown as black and white; count: y = the maximum
-    int level = 0;                   // mip level
-    int layer = 0;                   // first layer shown (array and cube textures)
-    int layerCount = 1;              // layers that renderer.displayLayer = -1 tiles; 0: up to the last
-    glm::ivec4 rect{0};              // x, y, width, height in texels of `level`; zero width: the whole level
+    int kind = 0;                         // shared::kDebugView*
+    glm::vec2 range{0.0f, 1.0f};          // scalar: the values shown as black and white; count: y = the maximum
+    int level = 0;                        // mip level
+    int layer = 0;                        // first layer shown (array and cube textures)
+    int layerCount = 1;                   // layers that renderer.displayLayer = -1 tiles; 0: up to the last
+    glm::ivec4 rect{0};                   // x, y, width, height in texels of `level`; zero width: the whole level
 };
 
 } // namespace vplgi

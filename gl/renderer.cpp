@@ -163,7 +163,8 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
 std::vector<DebugView> Renderer::debugViews() const
 {
     std::vector<DebugView> views = mShadows.debugViews();
-    for (DebugView& view : mTechnique->debugViews()) views.push_back(std::move(view));
+    for (DebugView& view : mTechnique->debugViews())
+        views.push_back(std::move(view));
     return views;
 }
 
@@ -179,8 +180,8 @@ void Renderer::bindDisplayView()
         return;
     }
     const std::vector<DebugView> views = debugViews();
-    const auto view = std::find_if(views.begin(), views.end(),
-                                   [&](const DebugView& v) { return v.name == mParams.display; });
+    const auto view =
+        std::find_if(views.begin(), views.end(), [&](const DebugView& v) { return v.name == mParams.display; });
     require(view != views.end(), "renderer.display: no view \"" + mParams.display + "\"");
     int layersShown = 0; // 0: nothing to show (black)
     glm::ivec4 rect(0);

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "api/timer.h"
-#include "debug_view.h"
 #include "core/scene/direct_lights.h"
 #include "core/util/image_io.h"
 #include "core/util/params.h"
 #include "core/scene/scene.h"
+#include "debug_view.h"
 #include "glsl/shared/bindings.h"
 #include "gpu_scene.h"
 #include "passes/fullscreen_pass.h"

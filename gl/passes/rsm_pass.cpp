@@ -13,7 +13,8 @@ namespace vplgi {
 
 void RSMParams::visitParams(ParamVisitor& v)
 {
-    v.field("rsm.size", size, 2, 4096, "RSM resolution per spot light, point-light cube face and directional light [texels], a power of two");
+    v.field("rsm.size", size, 2, 4096,
+            "RSM resolution per spot light, point-light cube face and directional light [texels], a power of two");
 }
 
 namespace {

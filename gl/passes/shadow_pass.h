@@ -8,9 +8,9 @@
 
 #include "../api/render_target.h"
 #include "../api/shader_loader.h"
+#include "../debug_view.h"
 #include "../gpu_scene.h"
 #include "core/scene/direct_lights.h"
-#include "../debug_view.h"
 
 namespace vplgi {
 

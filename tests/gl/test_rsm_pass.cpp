@@ -159,8 +159,9 @@ std::vector<CPUTexel> rasterisePlane(const RSMView& view, const DirectLightSet& 
                 const shared::PointEmitter& e = lights.points[static_cast<std::size_t>(view.emitter)];
                 const glm::vec3 dir = glm::normalize(glm::vec3(p - glm::dvec3(glm::vec3(e.positionProfile))));
                 // The angle to the view axis: the spot's axis or the cube face's.
-                const glm::vec3 axis = view.kind == shared::kRSMLightPoint ? shared::lightViewCubeFaceDirection(view.face)
-                                                                           : glm::vec3(e.axisCosOuter);
+                const glm::vec3 axis = view.kind == shared::kRSMLightPoint
+                                           ? shared::lightViewCubeFaceDirection(view.face)
+                                           : glm::vec3(e.axisCosOuter);
                 const float cosAlpha = glm::dot(axis, dir);
                 texel.flux = rho * e.intensity.x * shared::emitterProfile(e, dir) * view.texelFactor * cosAlpha *
                              cosAlpha * cosAlpha;
@@ -216,7 +217,8 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
         cpuSum += cpu[k].flux;
         if (gpuCovered != cpu[k].covered) {
             ++coverageMismatches;
-            mismatchedFlux += std::max(static_cast<double>(gpu[shared::kRSMFlux][k].r), static_cast<double>(cpu[k].flux));
+            mismatchedFlux +=
+                std::max(static_cast<double>(gpu[shared::kRSMFlux][k].r), static_cast<double>(cpu[k].flux));
             continue;
         }
         if (!gpuCovered) continue;
@@ -339,8 +341,8 @@ TEST_CASE("RSM of a plane under a point light: six cube faces, positions and flu
     const double omega = corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
     const double closedForm = rho * intensity * omega;
     const double relative = std::abs(gpuSum - closedForm) / closedForm;
-    MEASURED("point RSM flux sum over 6 faces " << gpuSum << " W vs closed form " << closedForm
-                                                << " W: relative error " << relative);
+    MEASURED("point RSM flux sum over 6 faces " << gpuSum << " W vs closed form " << closedForm << " W: relative error "
+                                                << relative);
     // Measured 5.4e-5 at 64^2 per face (the midpoint rule over texel solid angles; the corners of
     // a 90-degree face curve more than a spot's narrower frustum); 1.5e-4 is 2.8x. With the edges
     // across texels instead (x0 = -2.5, z0 = -1.5, z1 = 3.5) it was 2e-3: half-covered rows.

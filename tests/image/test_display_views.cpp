@@ -99,7 +99,8 @@ std::vector<float> readLayers(const gl::Texture& texture, GLenum format, int fir
 glm::ivec3 viewTexel(int x, int yTop, int width, int height, int layers, glm::ivec4 rect)
 {
     int columns = 1;
-    while (columns * columns < layers) ++columns;
+    while (columns * columns < layers)
+        ++columns;
     const int rows = (layers + columns - 1) / columns;
     const int gx = (2 * x + 1) * columns, gy = (2 * yTop + 1) * rows; // pixel centres in half pixels
     const int layer = (gy / (2 * height)) * columns + gx / (2 * width);
@@ -127,7 +128,8 @@ int compareDisplay(const Renderer& renderer, int layers, glm::ivec4 rect,
             const glm::ivec3 t = viewTexel(x, y, display.width, display.height, layers, rect);
             const glm::ivec3 want = t.x < 0 ? glm::ivec3(0) : expected(t.x, t.y, t.z);
             shown += t.x >= 0;
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(pixel(display, x, y)[c] - want[c]));
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(pixel(display, x, y)[c] - want[c]));
         }
     return worst;
 }
@@ -200,11 +202,14 @@ TEST_CASE("renderer.display shows the shadow maps as texture views, texel for te
     };
     // One cube face upscaled to a non-square image, every face of 3 cubes tiled (18 layers, 5 x 4
     // grid, downscaled), the directional map downscaled.
-    for (const Case& c : {Case{"shadow.point", 4, 48, 40}, Case{"shadow.point", -1, 70, 52},
-                          Case{"shadow.directional", -1, 40, 40}}) {
+    for (const Case& c :
+         {Case{"shadow.point", 4, 48, 40}, Case{"shadow.point", -1, 70, 52}, Case{"shadow.directional", -1, 40, 40}}) {
         RendererParams params;
-        ParamSetter setter(Settings{{"renderer.display", c.view}, {"renderer.displayLayer", std::to_string(c.layer)},
-                                    {"lights.emitterSamples", "3"}, {"shadow.cubeSize", "32"}, {"shadow.mapSize", "64"}});
+        ParamSetter setter(Settings{{"renderer.display", c.view},
+                                    {"renderer.displayLayer", std::to_string(c.layer)},
+                                    {"lights.emitterSamples", "3"},
+                                    {"shadow.cubeSize", "32"},
+                                    {"shadow.mapSize", "64"}});
         params.visitParams(setter);
         setter.finish();
         Renderer renderer(test::shaders(), scene, params, createTechnique("direct"));
@@ -218,16 +223,18 @@ TEST_CASE("renderer.display shows the shadow maps as texture views, texel for te
         const std::vector<float> depth = readLayers(*view.texture, GL_DEPTH_COMPONENT, first, layers);
         const int w = view.texture->width(), h = view.texture->height();
         float lo = 1.0f, hi = 0.0f;
-        for (float d : depth) lo = std::min(lo, d), hi = std::max(hi, d);
+        for (float d : depth)
+            lo = std::min(lo, d), hi = std::max(hi, d);
         // The maps hold a range of depths (a view of a constant would hide addressing errors).
         CHECK(hi - lo > 0.2f);
         int shown = 0;
-        const int worst = compareDisplay(renderer, layers, glm::ivec4(0, 0, w, h),
-                                         [&](int layer, int tx, int ty) {
-                                             const float d = depth[(static_cast<std::size_t>(layer) * h + ty) * w + tx];
-                                             return glm::ivec3(toByte(d)); // range [0, 1]
-                                         },
-                                         shown);
+        const int worst = compareDisplay(
+            renderer, layers, glm::ivec4(0, 0, w, h),
+            [&](int layer, int tx, int ty) {
+                const float d = depth[(static_cast<std::size_t>(layer) * h + ty) * w + tx];
+                return glm::ivec3(toByte(d)); // range [0, 1]
+            },
+            shown);
         MEASURED(c.view << " layer " << c.layer << " at " << c.width << "x" << c.height << ": worst byte difference "
                         << worst << ", " << shown << " pixels show a layer, depths " << lo << ".." << hi);
         // Measured 0: the same texel, and one float -> unorm rounding; 1 allows a driver that
@@ -239,8 +246,10 @@ TEST_CASE("renderer.display shows the shadow maps as texture views, texel for te
 
     // A layer past the view's last is an error naming the parameter.
     RendererParams params;
-    ParamSetter setter(Settings{{"renderer.display", "shadow.point"}, {"renderer.displayLayer", "6"},
-                                {"lights.emitterSamples", "1"}, {"shadow.cubeSize", "8"}});
+    ParamSetter setter(Settings{{"renderer.display", "shadow.point"},
+                                {"renderer.displayLayer", "6"},
+                                {"lights.emitterSamples", "1"},
+                                {"shadow.cubeSize", "8"}});
     params.visitParams(setter);
     setter.finish();
     Renderer renderer(test::shaders(), scene, params, createTechnique("direct"));
@@ -272,15 +281,26 @@ TEST_CASE("a technique's texture views: rectangle, layer, colour, normal and cou
         std::function<glm::ivec3(glm::vec4)> expected;
     };
     const Case cases[] = {
-        {"viewtest.color", 1, {2, 1, 5, 4}, 1,
+        {"viewtest.color",
+         1,
+         {2, 1, 5, 4},
+         1,
          [&](glm::vec4 v) {
              const glm::vec3 t = shared::toneMapReinhard(glm::vec3(v), exposure);
              return glm::ivec3(toByte(shared::encodeSRGB(t.r)), toByte(shared::encodeSRGB(t.g)),
                                toByte(shared::encodeSRGB(t.b)));
          }},
-        {"viewtest.normal", 2, {0, 0, 8, 6}, 0,
-         [](glm::vec4 v) { return glm::ivec3(toByte(v.x * 0.5f + 0.5f), toByte(v.y * 0.5f + 0.5f), toByte(v.z * 0.5f + 0.5f)); }},
-        {"viewtest.count", 1, {0, 0, 8, 6}, 0,
+        {"viewtest.normal",
+         2,
+         {0, 0, 8, 6},
+         0,
+         [](glm::vec4 v) {
+             return glm::ivec3(toByte(v.x * 0.5f + 0.5f), toByte(v.y * 0.5f + 0.5f), toByte(v.z * 0.5f + 0.5f));
+         }},
+        {"viewtest.count",
+         1,
+         {0, 0, 8, 6},
+         0,
          [](glm::vec4 v) { return glm::ivec3(toByte(std::log2(1.0f + std::max(v.r, 0.0f)) / std::log2(101.0f))); }},
     };
     for (const Case& c : cases) {
@@ -288,11 +308,9 @@ TEST_CASE("a technique's texture views: rectangle, layer, colour, normal and cou
         CHECK(changed.count("renderer.display") == 1);
         renderer.renderFrame(scene.cameras[0], 37, 29);
         int shown = 0;
-        const int worst = compareDisplay(renderer, c.layers, c.rect,
-                                         [&](int layer, int tx, int ty) {
-                                             return c.expected(texel(layer + c.layerOffset, tx, ty));
-                                         },
-                                         shown);
+        const int worst = compareDisplay(
+            renderer, c.layers, c.rect,
+            [&](int layer, int tx, int ty) { return c.expected(texel(layer + c.layerOffset, tx, ty)); }, shown);
         MEASURED(c.view << " at 37x29: worst byte difference " << worst << ", " << shown << " pixels show a layer");
         // Measured 0 for all three; 1 allows another driver's float -> unorm rounding and its
         // pow and log2 (GLSL's precision for them is looser than the CPU's).
