@@ -23,7 +23,9 @@ namespace vplgi {
 //   kDebugViewCount   r >= 0 as log2(1 + r) / log2(1 + range.y) (counts span decades)
 // Any float or normalised format of any texture target is fine (2D, 2D array, cube map, cube-map
 // array: the pass reads it through a 2D-array texture view, so a cube-map array's layer is
-// cube * 6 + face); integer formats are not (they need another sampler type).
+// cube * 6 + face); integer formats are not (they need another sampler type). debugViews() is
+// called every displayed frame, so a view may follow the technique's own parameters (e.g. the
+// atlas tile of the VPL that a `smcir.debugVpl` names, as `layer` and `rect`).
 //
 // Example, in a technique with an RSM and a shadow atlas:
 //   std::vector<DebugView> debugViews() const override {

@@ -88,7 +88,8 @@ public:
     // Called after visitParams changed `changedKeys` between frames (a live change from the viewer
     // or Renderer::applySettings): apply cheap ones at once, rebuild state on structural ones.
     virtual void applyParamChanges(const std::set<std::string>& /*changedKeys*/) {}
-    // The textures this technique can show (DebugView above). The names are the same for the
+    // The textures this technique can show (DebugView: gl/debug_view.h has the fields, the kinds
+    // and an example; the renderer adds its shadow maps). The names are the same for the
     // technique's whole life, from construction on (the CLI checks renderer.display against them
     // before setScene); the texture pointers are read after render() each frame and may be null
     // until the technique has created them.
