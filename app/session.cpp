@@ -105,7 +105,7 @@ void Session::visitAll(ParamVisitor& visitor)
         mRenderer->visitParams(visitor);
         return;
     }
-    mParams.visitParams(visitor);
+    mParams.visitParams(visitor, displayViewNames(mTechnique ? mTechnique->debugViews() : std::vector<DebugView>{}));
     if (mTechnique) mTechnique->visitParams(visitor);
 }
 

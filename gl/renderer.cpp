@@ -9,11 +9,38 @@
 
 namespace vplgi {
 
-void RendererParams::visitParams(ParamVisitor& v)
+namespace {
+
+// renderer.display's views of the frame, in kDisplay* order.
+const std::vector<std::string>& frameViewNames()
+{
+    static const std::vector<std::string> names = {"final", "direct", "indirect", "albedo", "normal", "depth"};
+    return names;
+}
+
+} // namespace
+
+std::vector<std::string> displayViewNames(const std::vector<DebugView>& techniqueViews)
+{
+    std::vector<std::string> names = frameViewNames();
+    names.push_back(kShadowPointView);
+    names.push_back(kShadowDirectionalView);
+    for (const DebugView& view : techniqueViews) {
+        require(std::find(names.begin(), names.end(), view.name) == names.end(),
+                "debug view \"" + view.name + "\" is named twice");
+        names.push_back(view.name);
+    }
+    return names;
+}
+
+void RendererParams::visitParams(ParamVisitor& v, const std::vector<std::string>& viewNames)
 {
     v.field("renderer.exposure", exposure, 0.0f, 1e6f, "radiance scale before Reinhard tone mapping");
-    v.choice("renderer.display", display, {"final", "direct", "indirect", "albedo", "normal", "depth"},
-             "what the display image shows (PNG output, window); EXR output stays the final radiance");
+    v.choice("renderer.display", display, viewNames,
+             "what the display image shows (PNG output, window): a view of the frame or a texture view "
+             "(gl/debug_view.h); EXR output stays the final radiance");
+    v.field("renderer.displayLayer", displayLayer, -1, 1 << 20,
+            "layer of a texture view (renderer.display) shown alone, from its first; -1: all its layers tiled");
     v.field("lights.emitterSamples", lights.emitterSamples, 1, 4096,
             "cosine point samples representing all emissive triangles");
     v.field("lights.seed", lights.seed, "seed of the emissive-triangle sample placement");
@@ -36,7 +63,7 @@ Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const Re
 
 void Renderer::visitParams(ParamVisitor& visitor)
 {
-    mParams.visitParams(visitor);
+    mParams.visitParams(visitor, displayViewNames(mTechnique->debugViews()));
     mTechnique->visitParams(visitor);
 }
 
@@ -123,7 +150,7 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
         glBindSampler(shared::kUnitDirect, 0);
         glBindSampler(shared::kUnitIndirect, 0);
         mGBuffer.gbuffer().bindForReading(); // the albedo, normal and depth views
-        glProgramUniform1i(mToneMap.program().id(), shared::kLocationDisplayView, mParams.display);
+        bindDisplayView();
         mOutput.resize(width, height);
         mToneMap.render(mOutput);
     }
@@ -131,6 +158,63 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
     mTimer.endFrame();
     ++mFrameIndex;
     gl::checkDebugMessages();
+}
+
+std::vector<DebugView> Renderer::debugViews() const
+{
+    std::vector<DebugView> views = mShadows.debugViews();
+    for (DebugView& view : mTechnique->debugViews())
+        views.push_back(std::move(view));
+    return views;
+}
+
+void Renderer::bindDisplayView()
+{
+    const GLuint program = mToneMap.program().id();
+    mDisplayView.reset();
+    const std::vector<std::string>& frameViews = frameViewNames();
+    const auto frameView = std::find(frameViews.begin(), frameViews.end(), mParams.display);
+    if (frameView != frameViews.end()) {
+        glProgramUniform1i(program, shared::kLocationDisplayView, static_cast<int>(frameView - frameViews.begin()));
+        glBindTextureUnit(shared::kUnitDisplayView, 0);
+        return;
+    }
+    const std::vector<DebugView> views = debugViews();
+    const auto view =
+        std::find_if(views.begin(), views.end(), [&](const DebugView& v) { return v.name == mParams.display; });
+    require(view != views.end(), "renderer.display: no view \"" + mParams.display + "\"");
+    int layersShown = 0; // 0: nothing to show (black)
+    glm::ivec4 rect(0);
+    if (view->texture && *view->texture) {
+        const gl::TextureDesc& desc = view->texture->desc();
+        require(desc.target != GL_TEXTURE_3D, "debug view " + view->name + ": 3D textures cannot be shown");
+        const int total = desc.target == GL_TEXTURE_CUBE_MAP ? 6 : desc.layers;
+        require(view->layer >= 0 && view->layer < total && view->level >= 0 && view->level < desc.levels,
+                "debug view " + view->name + ": layer or level outside its texture");
+        int first = view->layer;
+        int count = view->layerCount > 0 ? std::min(view->layerCount, total - first) : total - first;
+        if (mParams.displayLayer >= 0) {
+            require(mParams.displayLayer < count, "renderer.displayLayer = " + std::to_string(mParams.displayLayer) +
+                                                      ": view " + view->name + " has " + std::to_string(count) +
+                                                      " layers (0.." + std::to_string(count - 1) + ")");
+            first += mParams.displayLayer;
+            count = 1;
+        }
+        // One texture type for every source (2D, arrays, cubes, cube arrays): a 2D-array view.
+        mDisplayView = gl::Texture::makeView("display view " + view->name, *view->texture, GL_TEXTURE_2D_ARRAY,
+                                             view->level, first, count);
+        rect = view->rect.z > 0 ? view->rect : glm::ivec4(0, 0, mDisplayView.width(), mDisplayView.height());
+        require(rect.x >= 0 && rect.y >= 0 && rect.z > 0 && rect.w > 0 && rect.x + rect.z <= mDisplayView.width() &&
+                    rect.y + rect.w <= mDisplayView.height(),
+                "debug view " + view->name + ": rectangle outside its texture level");
+        layersShown = count;
+    }
+    glProgramUniform1i(program, shared::kLocationDisplayView, shared::kDisplayTextureView);
+    glProgramUniform4i(program, shared::kLocationDisplayViewInfo, view->kind, layersShown, 0, 0);
+    glProgramUniform4i(program, shared::kLocationDisplayViewRect, rect.x, rect.y, rect.z, rect.w);
+    glProgramUniform2f(program, shared::kLocationDisplayViewRange, view->range.x, view->range.y);
+    glBindTextureUnit(shared::kUnitDisplayView, mDisplayView.id());
+    glBindSampler(shared::kUnitDisplayView, 0);
 }
 
 ImageRGBA32F Renderer::readLinear(const gl::Texture& texture) const

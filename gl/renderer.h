@@ -9,12 +9,14 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "api/timer.h"
 #include "core/scene/direct_lights.h"
 #include "core/util/image_io.h"
 #include "core/util/params.h"
 #include "core/scene/scene.h"
+#include "debug_view.h"
 #include "glsl/shared/bindings.h"
 #include "gpu_scene.h"
 #include "passes/fullscreen_pass.h"
@@ -26,12 +28,19 @@ namespace vplgi {
 
 class ParamVisitor;
 
+// The names renderer.display accepts: final, direct, indirect, albedo, normal, depth (kDisplay*
+// order), the renderer's own texture views (shadow.point, shadow.directional), then those of
+// `techniqueViews` (Technique::debugViews()).
+std::vector<std::string> displayViewNames(const std::vector<DebugView>& techniqueViews = {});
+
 struct RendererParams {
     float exposure = 1.0f;           // radiance scale before Reinhard tone mapping
-    int display = 0;                 // what the display shows: shared::kDisplay* (renderer.display)
+    std::string display = "final";   // what the display shows: a name of displayViewNames() (renderer.display)
+    int displayLayer = -1;           // layer of a texture view to show alone, -1: all its layers tiled
     ShadowParams shadow;             // shadow.*
     DirectLightParams lights;        // lights.emitterSamples, lights.seed
-    void visitParams(ParamVisitor& visitor);
+    // `viewNames`: what renderer.display accepts (the technique's views too: displayViewNames).
+    void visitParams(ParamVisitor& visitor, const std::vector<std::string>& viewNames = displayViewNames());
 };
 
 class Renderer {
@@ -50,6 +59,8 @@ public:
     ImageRGBA32F readRadiance() const;  // direct + indirect, linear, rows top to bottom
     ImageRGBA32F readDirect() const;    // direct only (incl. emission), linear, rows top to bottom
     const gl::Texture& displayTexture() const { return mOutput.color(0); }
+    // Every texture view renderer.display can show: the renderer's own, then the technique's.
+    std::vector<DebugView> debugViews() const;
 
     // Per-pass times; with GPU timestamp queries they lag the rendered frame (see gl/api/timer.h).
     const gl::PassTimer& timer() const { return mTimer; }
@@ -73,6 +84,7 @@ public:
 private:
     void updateFrameUniforms(const Camera& camera, int width, int height);
     ImageRGBA32F readLinear(const gl::Texture& texture) const;
+    void bindDisplayView(); // the tone-map pass's inputs for the view renderer.display names
 
     const gl::ShaderLoader& mShaders;
     const Scene& mScene;
@@ -87,6 +99,7 @@ private:
     gl::RenderTarget mDirectTarget;   // direct light + emission, RGBA32F
     gl::RenderTarget mIndirectTarget; // the technique's indirect light, RGBA32F
     gl::RenderTarget mOutput;         // colour 0 display RGBA8 (sRGB bytes), colour 1 radiance RGBA32F
+    gl::Texture mDisplayView;         // texture view of what renderer.display shows (re-made each frame)
     gl::Buffer mFrameUniforms;
     gl::Buffer mPointEmitters;
     gl::Buffer mDirectionalEmitters;

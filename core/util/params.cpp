@@ -1,5 +1,6 @@
 #include "core/util/params.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +15,16 @@ std::pair<std::string, std::string> parseSetting(const std::string& text)
     std::size_t eq = text.find('=');
     require(eq != std::string::npos && eq > 0, "--set \"" + text + "\": expected key=value");
     return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void ParamVisitor::choice(const std::string& key, std::string& value, const std::vector<std::string>& names,
+                          const char* doc)
+{
+    const auto found = std::find(names.begin(), names.end(), value);
+    require(found != names.end(), "parameter " + key + ": \"" + value + "\" is not one of its names");
+    int index = static_cast<int>(found - names.begin());
+    choice(key, index, names, doc);
+    value = names[static_cast<std::size_t>(index)];
 }
 
 ParamSetter::ParamSetter(Settings settings)

@@ -25,6 +25,11 @@ public:
     {
         field(key, index, 0, static_cast<int>(names.size()) - 1, doc);
     }
+    // The same kept as the chosen name, for lists not fixed at compile time (renderer.display: its
+    // names include the technique's debug views). Forwards to the index form, so every visitor
+    // handles it; `value` must be one of `names` (throws Error naming the key otherwise).
+    virtual void choice(const std::string& key, std::string& value, const std::vector<std::string>& names,
+                        const char* doc);
 };
 
 // Applies "key=value" settings to the fields it visits. Values out of range or unparsable throw
@@ -37,6 +42,7 @@ public:
     void field(const std::string& key, bool& value, const char* doc) override;
     void field(const std::string& key, std::uint32_t& value, const char* doc) override;
     // Accepts a name of `names` (or its index).
+    using ParamVisitor::choice;
     void choice(const std::string& key, int& index, const std::vector<std::string>& names, const char* doc) override;
     void finish() const;
     // Keys that matched a visited field (for callers that apply one setting list to several owners).
@@ -59,6 +65,7 @@ public:
     void field(const std::string& key, int& value, int min, int max, const char* doc) override;
     void field(const std::string& key, bool& value, const char* doc) override;
     void field(const std::string& key, std::uint32_t& value, const char* doc) override;
+    using ParamVisitor::choice;
     void choice(const std::string& key, int& index, const std::vector<std::string>& names, const char* doc) override;
     std::string text() const;                              // one line per field
     const std::map<std::string, std::string>& values() const { return mValues; }

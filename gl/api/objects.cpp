@@ -1,5 +1,6 @@
 #include "objects.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "core/util/error.h"
@@ -53,6 +54,30 @@ Texture::Texture(const std::string& name, const TextureDesc& desc) : mDesc(desc)
     default: throw Error("texture " + name + ": unsupported target");
     }
     label(GL_TEXTURE, mId, name);
+}
+
+Texture Texture::makeView(const std::string& name, const Texture& source, GLenum target, int level, int firstLayer,
+                          int layers)
+{
+    const TextureDesc& from = source.desc();
+    require(source && level >= 0 && level < from.levels && firstLayer >= 0 && layers > 0 &&
+                firstLayer + layers <= from.layers,
+            "texture view " + name + ": level or layers outside the source texture");
+    Texture view;
+    view.mDesc = from;
+    view.mDesc.target = target;
+    view.mDesc.width = std::max(1, from.width >> level);
+    view.mDesc.height = std::max(1, from.height >> level);
+    view.mDesc.layers = layers;
+    view.mDesc.levels = 1;
+    // glTextureView needs a name that was never bound: glGenTextures, not glCreateTextures.
+    glGenTextures(1, &view.mId);
+    glTextureView(view.mId, target, source.id(), from.format, static_cast<GLuint>(level), 1,
+                  static_cast<GLuint>(firstLayer), static_cast<GLuint>(layers));
+    glTextureParameteri(view.mId, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(view.mId, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    label(GL_TEXTURE, view.mId, name);
+    return view;
 }
 
 Sampler::Sampler(const std::string& name, const SamplerDesc& desc)

@@ -75,6 +75,10 @@ class Texture : public Object<TextureTag> {
 public:
     Texture() = default;
     Texture(const std::string& name, const TextureDesc& desc);
+    // A texture view (GL 4.3) of `layers` layers from `firstLayer` and one mip level of `source`,
+    // as `target` (e.g. a cube-map array's faces as a 2D array), same format; nearest filtering.
+    static Texture makeView(const std::string& name, const Texture& source, GLenum target, int level, int firstLayer,
+                            int layers);
     const TextureDesc& desc() const { return mDesc; }
     int width() const { return mDesc.width; }
     int height() const { return mDesc.height; }

@@ -13,7 +13,8 @@ namespace vplgi {
 
 void RSMParams::visitParams(ParamVisitor& v)
 {
-    v.field("rsm.size", size, 2, 4096, "RSM resolution per spot/directional light [texels], a power of two");
+    v.field("rsm.size", size, 2, 4096,
+            "RSM resolution per spot light, point-light cube face and directional light [texels], a power of two");
 }
 
 namespace {
@@ -62,10 +63,9 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
     std::vector<RSMView> views;
     for (std::size_t i = 0; i < lights.points.size(); ++i) {
         const shared::PointEmitter& e = lights.points[i];
-        if (static_cast<int>(e.positionProfile.w + 0.5f) != shared::kProfileSpot) continue;
+        const int profile = static_cast<int>(e.positionProfile.w + 0.5f);
+        if (profile != shared::kProfileSpot && profile != shared::kProfileIsotropic) continue;
         const glm::vec3 position(e.positionProfile);
-        const glm::vec3 axis = glm::normalize(glm::vec3(e.axisCosOuter));
-        const float halfAngle = std::min(std::acos(std::clamp(e.axisCosOuter.w, -1.0f, 1.0f)), kRSMMaxSpotHalfAngle);
         // Far: past the farthest bounds corner; near: a fixed fraction of it (DEPTH32F has the
         // precision for 1e-4).
         float farthest = 0.0f;
@@ -76,8 +76,20 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
         }
         const float zFar = 1.01f * std::max(farthest, diagonal * 1e-3f);
         RSMView view;
-        view.kind = shared::kRSMLightSpot;
         view.emitter = static_cast<int>(i);
+        if (profile == shared::kProfileIsotropic) {
+            view.kind = shared::kRSMLightPoint;
+            for (int face = 0; face < shared::kLightViewCubeFaceCount; ++face) {
+                view.face = face;
+                view.viewFromWorld = shared::lightViewCubeFaceViewFromWorld(position, face);
+                view.clipFromView = shared::lightViewCubeFaceClipFromView(1e-4f * zFar, zFar);
+                views.push_back(view);
+            }
+            continue;
+        }
+        const glm::vec3 axis = glm::normalize(glm::vec3(e.axisCosOuter));
+        const float halfAngle = std::min(std::acos(std::clamp(e.axisCosOuter.w, -1.0f, 1.0f)), kRSMMaxSpotHalfAngle);
+        view.kind = shared::kRSMLightSpot;
         view.viewFromWorld = shared::lightViewSpotViewFromWorld(position, axis);
         view.clipFromView = shared::lightViewSpotClipFromView(halfAngle, 1e-4f * zFar, zFar);
         views.push_back(view);
@@ -120,10 +132,12 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
         mProgram.set("uClipFromWorld", view.clipFromWorld);
         mProgram.set("uLightKind", view.kind);
         mProgram.set("uTexelFactor", view.texelFactor);
-        if (view.kind == shared::kRSMLightSpot) {
+        if (view.kind == shared::kRSMLightSpot || view.kind == shared::kRSMLightPoint) {
             const shared::PointEmitter& e = lights.points[static_cast<std::size_t>(view.emitter)];
+            const glm::vec3 axis = view.kind == shared::kRSMLightPoint ? shared::lightViewCubeFaceDirection(view.face)
+                                                                       : glm::normalize(glm::vec3(e.axisCosOuter));
             mProgram.set("uLightPosition", glm::vec4(glm::vec3(e.positionProfile), 1.0f));
-            mProgram.set("uLightDirection", glm::vec4(glm::normalize(glm::vec3(e.axisCosOuter)), 0.0f));
+            mProgram.set("uLightDirection", glm::vec4(axis, 0.0f));
             mProgram.set("uLightPower", glm::vec4(glm::vec3(e.intensity), 0.0f));
             mProgram.set("uLightCone", glm::vec4(e.axisCosOuter.w, e.cosInner.x, 0.0f, 0.0f));
         } else {

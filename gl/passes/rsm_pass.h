@@ -9,9 +9,10 @@
 //
 // Overview
 // --------
-//  render()     one layer of a 2D-array target per spot light and per directional light (spots
-//               first, in DirectLightSet order, then directionals); point lights without a cone
-//               and emissive samples get no RSM (see "Point lights" below). Then the mips.
+//  render()     layers of a 2D-array target: one per spot light, six per point light (its cube
+//               faces, GL order +X, -X, +Y, -Y, +Z, -Z) in DirectLightSet order, then one per
+//               directional light; emissive samples get none (see "Point lights" below). Then the
+//               mips.
 //  Attachments  (glsl/shared/rsm.h; all RGBA32F, size rsm.size^2, full mip chain)
 //               position  xyz world position [m], w |x|^2 (VSGL's "squared norm"; MATH.md 5.3)
 //               normal    xyz shading normal, w coverage (1 where a surface was rasterised)
@@ -27,8 +28,10 @@
 //  Views. Spot: a square perspective frustum down the axis whose half-angle is the outer cone
 //  angle, capped at kRSMMaxSpotHalfAngle (light_view.h lightViewSpot*); near/far from the scene
 //  bounds. Directional: lightViewDirectionalFit (the same orthographic view as its shadow map).
-//  Flux per texel (MATH.md 1.5). Spot: I(w) dw_t with dw_t = 4/(P00 P11 W H) cos^3(alpha), alpha
-//  the texel ray's angle to the axis (the texel's solid angle); directional: E * 4/(P00 P11 W H),
+//  Point: the six faces of light_view.h's cube (lightViewCubeFace*, as the shadow cubes), near/far
+//  as for spots.
+//  Flux per texel (MATH.md 1.5). Spot and point: I(w) dw_t with dw_t = 4/(P00 P11 W H) cos^3(alpha),
+//  alpha the texel ray's angle to the view axis (the texel's solid angle); directional: E * 4/(P00 P11 W H),
 //  the texel's area across the beam. Surfaces take all the flux of their texel: no cosine here.
 //  Mips (rsm_downsample.comp through ComputePass, one dispatch per level: level l read with
 //  texelFetch, level l+1 written as images, six image uniforms within the GL minimum of eight).
@@ -41,8 +44,15 @@
 //  texels: RSM sizes are powers of two). Normals and lobes are not renormalised: the normal's
 //  length is the Toksvig factor |N_a| (MATH.md 4.8), 1 on a flat surface. Each target texel is one
 //  invocation summing its children in a fixed order: bit-identical across runs and thread counts.
-//  Point lights: not rendered. They need six cube faces (or two paraboloids) per light, i.e. six
-//  layers with their own texel solid angles; no technique asks for them yet.
+//  Point lights: six cube faces, not two paraboloids. A paraboloid projection is not linear:
+//  a triangle's edges map to curves, so a rasteriser draws large triangles (a floor of two
+//  triangles) in the wrong texels unless the scene is tessellated finely, while a cube face is a
+//  perspective projection, exact for any triangle. The faces also reuse everything the spot path
+//  has (texel solid angle cos^3, the mip reduction per layer, light_view.h's cube faces, the same
+//  as the shadow cubes'). The price: six layers per light instead of two, and the mips stop at
+//  the face seams (a consumer filtering across a seam must look up the neighbouring face).
+//  Emissive samples (kProfileCosine) get none: there are lights.emitterSamples of them, each a
+//  hemisphere light; an RSM for an area light would be a technique's own decision.
 //  Precision: positions are absolute world coordinates; |x|^2 - |E[x]|^2 loses digits far from the
 //  origin (MATH.md 5.3 float32 caution). A consumer that needs the variance far away should store
 //  positions relative to the light instead.
@@ -79,8 +89,9 @@ constexpr float kRSMMaxSpotHalfAngle = 1.4835299f; // 85 degrees
 
 // What layer i of the RSM was rendered for.
 struct RSMView {
-    int kind = 0;    // shared::kRSMLightSpot / kRSMLightDirectional
+    int kind = 0;    // shared::kRSMLightSpot / kRSMLightPoint / kRSMLightDirectional
     int emitter = 0; // index in DirectLightSet::points / ::directionals
+    int face = 0;    // point: cube face (0..5 = +X, -X, +Y, -Y, +Z, -Z); 0 otherwise
     glm::mat4 viewFromWorld{1.0f};
     glm::mat4 clipFromView{1.0f};
     glm::mat4 clipFromWorld{1.0f};
@@ -91,7 +102,7 @@ class RSMPass {
 public:
     explicit RSMPass(const gl::ShaderLoader& shaders);
     void reloadShaders(const gl::ShaderLoader& shaders);
-    // Renders every spot and directional light's RSM and its mips. Throws Error when params.size is
+    // Renders every spot, point and directional light's RSM and its mips. Throws Error when params.size is
     // not a power of two. With no such light, nothing is drawn and layerCount() is 0.
     void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params);
     // Recomputes levels 1.. from level 0 (render() calls it; public for the tests).

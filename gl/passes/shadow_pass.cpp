@@ -150,6 +150,17 @@ void ShadowPass::renderDirectional(const GpuScene& scene, DirectLightSet& lights
     scene.draw(mDirectionalProgram, GpuScene::Bind::Geometry, count);
 }
 
+std::vector<DebugView> ShadowPass::debugViews() const
+{
+    DebugView point{kShadowPointView, "point-emitter shadow cubes: distance / far, layer = emitter * 6 + face",
+                    mCubes ? &mCubes.depth() : nullptr, shared::kDebugViewScalar};
+    point.layerCount = 0;
+    DebugView directional{kShadowDirectionalView, "directional shadow maps: depth, layer = directional emitter",
+                          mDirectional ? &mDirectional.depth() : nullptr, shared::kDebugViewScalar};
+    directional.layerCount = 0;
+    return {point, directional};
+}
+
 void ShadowPass::bindForReading() const
 {
     // Unused units still get a valid texture of the right type: bind 0 only when absent.

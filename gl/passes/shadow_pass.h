@@ -8,6 +8,7 @@
 
 #include "../api/render_target.h"
 #include "../api/shader_loader.h"
+#include "../debug_view.h"
 #include "../gpu_scene.h"
 #include "core/scene/direct_lights.h"
 
@@ -25,6 +26,10 @@ struct ShadowParams {
     void visitParams(ParamVisitor& visitor);
 };
 
+// The names of ShadowPass::debugViews().
+inline constexpr const char* kShadowPointView = "shadow.point";
+inline constexpr const char* kShadowDirectionalView = "shadow.directional";
+
 class ShadowPass {
 public:
     explicit ShadowPass(const gl::ShaderLoader& shaders);
@@ -34,6 +39,10 @@ public:
     // Binds the shadow textures and the directional matrices for the shading passes.
     void bindForReading() const;
     float cubeFarDistance() const { return mFar; }
+    // The maps as debug views (renderer.display): "shadow.point" (every cube face, layer = emitter
+    // * 6 + face, radial distance / cube far) and "shadow.directional" (depth, layer = directional
+    // emitter); null textures before the first render() or without such emitters.
+    std::vector<DebugView> debugViews() const;
     // Cube maps re-rendered by the last render() (emitters that moved, or all after a reallocation).
     int lastRenderedCubes() const { return mLastRenderedCubes; }
 

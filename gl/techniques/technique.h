@@ -12,6 +12,7 @@
 
 #include "../api/shader_loader.h"
 #include "../api/timer.h"
+#include "../debug_view.h"
 #include "../gpu_scene.h"
 #include "../passes/gbuffer_pass.h"
 #include "core/scene/direct_lights.h"
@@ -87,6 +88,12 @@ public:
     // Called after visitParams changed `changedKeys` between frames (a live change from the viewer
     // or Renderer::applySettings): apply cheap ones at once, rebuild state on structural ones.
     virtual void applyParamChanges(const std::set<std::string>& /*changedKeys*/) {}
+    // The textures this technique can show (DebugView: gl/debug_view.h has the fields, the kinds
+    // and an example; the renderer adds its shadow maps). The names are the same for the
+    // technique's whole life, from construction on (the CLI checks renderer.display against them
+    // before setScene); the texture pointers are read after render() each frame and may be null
+    // until the technique has created them.
+    virtual std::vector<DebugView> debugViews() const { return {}; }
     // Statistics of the last frame for `vplgi bench` (e.g. "rays", "vpls", "vplsMoved").
     virtual std::vector<std::pair<std::string, double>> frameStats() const { return {}; }
     // What a path-traced reference must simulate to be compared with this technique (`vplgi

@@ -48,10 +48,14 @@ VPLGI_CONST int kUnitIndirect = 11;
 VPLGI_CONST int kUnitRSMSource = 12; // 6 units: RSM level l per attachment (passes/rsm_downsample.comp)
 VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), after the RSM units 12..17
 VPLGI_CONST int kUnitVPLShadowMaps = 19; // VPL paraboloid maps: distance [m] (sampler2DArray, r32f)
+VPLGI_CONST int kUnitDisplayView = 20; // renderer.display's texture view (sampler2DArray; passes/tonemap.frag)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
-VPLGI_CONST int kLocationDisplayView = 1;     // passes/tonemap.frag: renderer.display (DisplayView)
+VPLGI_CONST int kLocationDisplayView = 1;     // passes/tonemap.frag: renderer.display (kDisplay*)
+VPLGI_CONST int kLocationDisplayViewInfo = 2; // passes/tonemap.frag: ivec4 (kDebugView* kind, layers shown, 0, 0)
+VPLGI_CONST int kLocationDisplayViewRect = 3; // passes/tonemap.frag: ivec4 texel rectangle x, y, width, height
+VPLGI_CONST int kLocationDisplayViewRange = 4; // passes/tonemap.frag: vec2 value range (scalar and count views)
 
 // renderer.display: what the tone-map pass shows.
 VPLGI_CONST int kDisplayFinal = 0;    // direct + indirect, tone mapped
@@ -60,6 +64,13 @@ VPLGI_CONST int kDisplayIndirect = 2; // the technique's indirect light, tone ma
 VPLGI_CONST int kDisplayAlbedo = 3;   // G-buffer base colour (linear, sRGB-encoded)
 VPLGI_CONST int kDisplayNormal = 4;   // G-buffer shading normal, n * 0.5 + 0.5
 VPLGI_CONST int kDisplayDepth = 5;    // distance to the eye d [m] as d / (1 + d)
+VPLGI_CONST int kDisplayTextureView = 6; // a texture view by name (Technique::debugViews, gl/techniques/technique.h)
+
+// How a texture view (DebugView::kind) is turned into display values.
+VPLGI_CONST int kDebugViewColor = 0;  // rgb HDR colour: exposure, Reinhard, sRGB, as the final image
+VPLGI_CONST int kDebugViewScalar = 1; // r (depth, distance, ...) mapped linearly from range to grey [0, 1]
+VPLGI_CONST int kDebugViewNormal = 2; // xyz unit vector as xyz * 0.5 + 0.5
+VPLGI_CONST int kDebugViewCount = 3;  // r >= 0 as log2(1 + r) / log2(1 + range max) grey (counts span decades)
 
 // Per-frame constants (std140; vec4/mat4 members only).
 struct FrameUniforms {

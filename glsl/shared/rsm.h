@@ -18,6 +18,7 @@ VPLGI_CONST int kRSMAttachmentCount = 6;
 // Which light an RSM layer was rendered for.
 VPLGI_CONST int kRSMLightSpot = 0;
 VPLGI_CONST int kRSMLightDirectional = 1;
+VPLGI_CONST int kRSMLightPoint = 2; // one of six cube faces (gl/passes/rsm_pass.h says why a cube)
 
 // Work-group edge of rsm_downsample.comp.
 VPLGI_CONST int kRSMDownsampleGroupSize = 8;

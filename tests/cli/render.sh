@@ -67,6 +67,13 @@ if "$vplgi" render --scene cornell --set renderer.display=bogus --out "$work/bog
   echo "FAIL: renderer.display=bogus accepted"; exit 1
 fi
 grep -q 'renderer.display' "$work/bogus.err"; test ! -e "$work/bogus.png"
+grep -q 'shadow.point' "$work/bogus.err" # the error lists the texture views too
+# A texture view (the renderer's shadow cubes, every layer tiled) and one layer of it.
+"$vplgi" render --scene cornell --width 48 --height 48 --set renderer.display=shadow.point --out "$work/view-shadow.png" --quiet >/dev/null
+"$vplgi" render --scene cornell --width 48 --height 48 --set renderer.display=shadow.point --set renderer.displayLayer=3 --out "$work/view-shadow3.png" --quiet >/dev/null
+if cmp -s "$work/a48.png" "$work/view-shadow.png" || cmp -s "$work/view-shadow.png" "$work/view-shadow3.png"; then
+  echo "FAIL: display=shadow.point shows the final image or ignores renderer.displayLayer"; exit 1
+fi
 echo "display views: ok"
 
 # A glTF file as --scene (from the shared assets: skipped when absent, failed when CI=true).

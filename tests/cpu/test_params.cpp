@@ -62,3 +62,38 @@ TEST_CASE("the dump lists every field with its value", "[params]")
     CHECK(dumper.values().at("x.count") == "12");
     CHECK(dumper.text().find("x.exposure = 1  # exposure [0, 10]") != std::string::npos);
 }
+
+TEST_CASE("a choice kept as its name: set by name or index, dumped, changes reported", "[params]")
+{
+    // The names are a run-time list (renderer.display: the technique's views are among them).
+    const std::vector<std::string> names = {"final", "normal", "smcir.atlas"};
+    std::string view = "final";
+    auto visit = [&](ParamVisitor& v) { v.choice("x.view", view, names, "what to show"); };
+
+    ParamSetter byName(Settings{{"x.view", "smcir.atlas"}});
+    visit(byName);
+    byName.finish();
+    CHECK(view == "smcir.atlas");
+    CHECK(byName.changedKeys().count("x.view") == 1);
+
+    ParamSetter byIndex(Settings{{"x.view", "1"}});
+    visit(byIndex);
+    CHECK(view == "normal");
+
+    ParamSetter same(Settings{{"x.view", "normal"}});
+    visit(same);
+    CHECK(same.changedKeys().empty());
+
+    ParamDumper dumper;
+    visit(dumper);
+    CHECK(dumper.values().at("x.view") == "normal");
+    CHECK(dumper.text().find("final|normal|smcir.atlas") != std::string::npos);
+
+    ParamSetter bad(Settings{{"x.view", "bogus"}});
+    CHECK_THROWS_WITH(visit(bad), Catch::Contains("x.view") && Catch::Contains("smcir.atlas"));
+    CHECK(view == "normal");
+    // A value outside the list is the owner's error, reported rather than dumped as garbage.
+    view = "gone";
+    ParamDumper stale;
+    CHECK_THROWS_WITH(visit(stale), Catch::Contains("x.view") && Catch::Contains("gone"));
+}
