@@ -42,6 +42,7 @@ VPLGI_CONST int kUnitDirect = 10;
 VPLGI_CONST int kUnitIndirect = 11;
 VPLGI_CONST int kUnitRSMSource = 12; // 6 units: RSM level l per attachment (passes/rsm_downsample.comp)
 VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), after the RSM units 12..17
+VPLGI_CONST int kUnitBilateralInput = 19; // unfiltered radiance read by passes/bilateral_filter.frag
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
