@@ -1,6 +1,7 @@
 #include "bilateral_filter.h"
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "core/scene/scene.h"
@@ -17,7 +18,7 @@ void BilateralFilterParams::visitParams(ParamVisitor& v, const std::string& pref
             "window edge in 4x4 tiles: 4m x 4m pixels, offsets -2m..2m-1, every interleaving class m^2 times");
     v.field(prefix + "sigmaN", sigmaN, 0.0f, 4096.0f, "normal weight cos+(n_p.n_q)^sigmaN [-]; 0: normals ignored");
     v.field(prefix + "sigmaX", sigmaX, 0.01f, 1e30f,
-            "world-distance sigma in pixel footprints at p [pixels]; >= 1e20: distance ignored");
+            "world-distance sigma in pixel footprints at p [pixels]; >= 1e19: distance ignored");
 }
 
 BilateralFilterView BilateralFilterView::fromCamera(const Camera& camera)
@@ -54,17 +55,19 @@ void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& inpu
     std::optional<gl::PassTimer::Scope> scope;
     if (timer) scope.emplace(*timer, "bilateral filter");
 
-    // 1 / (2 sigmaX^2) in double: it underflows to exactly 0 in float for sigmaX above about 1e19
-    // (and is 0 for infinity), which the shader reads as "no distance term".
+    // 1 / (2 sigmaX^2) in double; below the smallest normal float (sigmaX above about 6.5e18, or
+    // infinity) it is set to exactly 0, which the shader reads as "no distance term" (a denormal
+    // would be flushed or not depending on the driver).
     const double sigmaX = params.sigmaX;
-    const float invTwoSigmaX2 = static_cast<float>(1.0 / (2.0 * sigmaX * sigmaX));
+    const double invTwoSigmaX2 = 1.0 / (2.0 * sigmaX * sigmaX);
 
     const gl::Program& program = mPass.program();
     glProgramUniform2i(program.id(), program.uniformLocation("uSize"), width, height);
     program.set("uEnabled", params.enabled ? 1 : 0);
     program.set("uWindowTiles", params.windowTiles);
     program.set("uSigmaN", params.sigmaN);
-    program.set("uInvTwoSigmaX2", invTwoSigmaX2);
+    program.set("uInvTwoSigmaX2",
+                invTwoSigmaX2 < std::numeric_limits<float>::min() ? 0.0f : static_cast<float>(invTwoSigmaX2));
     program.set("uEye", view.eye);
     program.set("uFootprintScale", 2.0f * view.tanHalfFovY / static_cast<float>(height));
 

@@ -40,7 +40,10 @@
 //  is 0 in float beyond about 13 sigma_x; q facing away (n_p . n_q <= 0) gets 0 when sigmaN > 0.
 //  With sigmaN = 0 the normal term is 1 (x^0 = 1), also for opposite normals. Pixels without geometry
 //  keep their input value. p is always in its own window with weight 1, so the sum is never 0.
-//  sigmaX = infinity (any value above 1e30) turns the distance term off (weight 1).
+//  sigmaX >= 1e19 (or infinity) turns the distance term off (weight exactly 1).
+//  Footprint. It is the pixel's width across the view ray, not along the surface: on a surface seen
+//  at a grazing angle neighbouring pixels are up to 1/cos farther apart, so the filter smooths less
+//  there (it never smooths more: no leak). A technique wanting more there raises sigmaX.
 //  Disabled (enabled = false): the output is the input, bit for bit (same pass, one tap).
 //  Determinism: every pixel sums its taps in a fixed order; no atomics, no shared memory.
 //
@@ -72,7 +75,7 @@ struct BilateralFilterParams {
     bool enabled = true; // off: the output is the input
     int windowTiles = 2; // m: the window is 4m x 4m pixels (offsets -2m .. 2m-1), each 4x4 class m^2 times
     float sigmaN = 32.0f; // exponent of cos+(n_p . n_q) [-]; 0 ignores normals
-    float sigmaX = 3.0f;  // world-distance sigma in pixel footprints at p [pixels]; > 1e30 ignores distance
+    float sigmaX = 3.0f;  // world-distance sigma in pixel footprints at p [pixels]; >= 1e19 ignores distance
     // Keys prefix + "enabled", prefix + "windowTiles", ... (a technique forwards e.g. "smcir.filter.").
     void visitParams(ParamVisitor& visitor, const std::string& prefix = "filter.");
 };

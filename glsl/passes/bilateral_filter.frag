@@ -32,7 +32,8 @@ void main()
     }
     vec3 normalP = texelFetch(uNormal, p, 0).xyz;
     float footprint = length(positionP.xyz - uEye) * uFootprintScale;
-    float kp = uInvTwoSigmaX2 > 0.0 ? uInvTwoSigmaX2 / (footprint * footprint) : 0.0;
+    // (The floor keeps a pixel at the eye finite; no real G-buffer has one.)
+    float kp = uInvTwoSigmaX2 > 0.0 ? uInvTwoSigmaX2 / max(footprint * footprint, 1e-30) : 0.0;
 
     int width = 4 * uWindowTiles;
     // Shift the window inwards at the border rather than clip it: 4m consecutive pixels hold every

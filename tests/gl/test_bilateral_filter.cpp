@@ -227,7 +227,7 @@ std::vector<glm::vec4> wallRadiance(const CpuGBuffer& g)
 
 } // namespace
 
-TEST_CASE("bilateral filter: with unit weights every pixel is the mean of the 16 classes", "[gl]")
+TEST_CASE("bilateral filter: with unit weights every pixel is the mean of the 16 classes", "[gl][numbers]")
 {
     test::ensureGLContext();
     CrossBilateralFilter filter(test::shaders());
@@ -259,6 +259,13 @@ TEST_CASE("bilateral filter: with unit weights every pixel is the mean of the 16
         // (8x8), 2.4e-7 (12x12); 5e-7 is 2x the worst.
         CHECK(worst < 5e-7);
     }
+
+    // A large finite sigmaX is the same as infinity, bit for bit (the pass sends 0 for both).
+    BilateralFilterParams large = unitWeights(2);
+    large.sigmaX = 1e19f;
+    const std::vector<glm::vec4> largeOut = fixture.run(filter, radiance, large);
+    const std::vector<glm::vec4> infiniteOut = fixture.run(filter, radiance, unitWeights(2));
+    CHECK(std::memcmp(largeOut.data(), infiniteOut.data(), largeOut.size() * sizeof(glm::vec4)) == 0);
 
     // Disabled: the input, bit for bit.
     BilateralFilterParams off;
