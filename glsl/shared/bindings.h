@@ -49,6 +49,7 @@ VPLGI_CONST int kUnitRSMSource = 12; // 6 units: RSM level l per attachment (pas
 VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), after the RSM units 12..17
 VPLGI_CONST int kUnitVPLShadowMaps = 19; // VPL paraboloid maps: distance [m] (sampler2DArray, r32f)
 VPLGI_CONST int kUnitDisplayView = 20; // renderer.display's texture view (sampler2DArray; passes/tonemap.frag)
+VPLGI_CONST int kUnitBilateralInput = 21; // unfiltered radiance read by passes/bilateral_filter.frag
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target

@@ -1,0 +1,82 @@
+#include "bilateral_filter.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "core/scene/scene.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "glsl/shared/bindings.h"
+
+namespace vplgi {
+
+void BilateralFilterParams::visitParams(ParamVisitor& v, const std::string& prefix)
+{
+    v.field(prefix + "enabled", enabled, "cross-bilateral filter over the interleaved result (off: unfiltered)");
+    v.field(prefix + "windowTiles", windowTiles, 1, 8,
+            "window edge in 4x4 tiles: 4m x 4m pixels, offsets -2m..2m-1, every interleaving class m^2 times");
+    v.field(prefix + "sigmaN", sigmaN, 0.0f, 4096.0f, "normal weight cos+(n_p.n_q)^sigmaN [-]; 0: normals ignored");
+    v.field(prefix + "sigmaX", sigmaX, 0.01f, 1e30f,
+            "world-distance sigma in pixel footprints at p [pixels]; >= 1e19: distance ignored");
+}
+
+BilateralFilterView BilateralFilterView::fromCamera(const Camera& camera)
+{
+    return {camera.position, std::tan(0.5f * camera.fovY)};
+}
+
+CrossBilateralFilter::CrossBilateralFilter(const gl::ShaderLoader& shaders)
+    : mPass(shaders, "bilateral filter", "passes/bilateral_filter.frag")
+{
+}
+
+void CrossBilateralFilter::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    mPass.reloadShaders(shaders);
+}
+
+void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& input, const gl::RenderTarget& output,
+                                 const BilateralFilterView& view, const BilateralFilterParams& params,
+                                 FullscreenDraw::Blend blend, gl::PassTimer* timer) const
+{
+    const int width = gbuffer.width();
+    const int height = gbuffer.height();
+    require(input.width() == width && input.height() == height && output.width() == width &&
+                output.height() == height,
+            "bilateral filter: input " + std::to_string(input.width()) + "x" + std::to_string(input.height()) +
+                " and output " + output.name() + " " + std::to_string(output.width()) + "x" +
+                std::to_string(output.height()) + " must have the G-buffer's size " + std::to_string(width) + "x" +
+                std::to_string(height));
+    require(params.windowTiles >= 1 && params.windowTiles <= 8, "bilateral filter: windowTiles must be in [1, 8]");
+    require(params.sigmaN >= 0.0f, "bilateral filter: sigmaN must be >= 0");
+    require(params.sigmaX > 0.0f, "bilateral filter: sigmaX must be > 0");
+
+    std::optional<gl::PassTimer::Scope> scope;
+    if (timer) scope.emplace(*timer, "bilateral filter");
+
+    // 1 / (2 sigmaX^2) in double; below the smallest normal float (sigmaX above about 6.5e18, or
+    // infinity) it is set to exactly 0, which the shader reads as "no distance term" (a denormal
+    // would be flushed or not depending on the driver).
+    const double sigmaX = params.sigmaX;
+    const double invTwoSigmaX2 = 1.0 / (2.0 * sigmaX * sigmaX);
+
+    const gl::Program& program = mPass.program();
+    glProgramUniform2i(program.id(), program.uniformLocation("uSize"), width, height);
+    program.set("uEnabled", params.enabled ? 1 : 0);
+    program.set("uWindowTiles", params.windowTiles);
+    program.set("uSigmaN", params.sigmaN);
+    program.set("uInvTwoSigmaX2",
+                invTwoSigmaX2 < std::numeric_limits<float>::min() ? 0.0f : static_cast<float>(invTwoSigmaX2));
+    program.set("uEye", view.eye);
+    program.set("uFootprintScale", 2.0f * view.tanHalfFovY / static_cast<float>(height));
+
+    gbuffer.bindForReading();
+    glBindTextureUnit(shared::kUnitBilateralInput, input.id());
+    glBindSampler(shared::kUnitBilateralInput, 0);
+    FullscreenDraw draw;
+    draw.blend = blend;
+    mPass.render(output, draw);
+}
+
+} // namespace vplgi
