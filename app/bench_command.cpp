@@ -187,7 +187,7 @@ void printVPLTable(const std::vector<BenchResult>& results, const std::vector<st
         const double sampling = stat("sampler: total ms");
         const double maps = pass(t + " / shadow maps");
         const double shading = pass("gbuffer") + pass(t + " / interleaved shading");
-        const double filter = pass(t + " / filter");
+        const double filter = pass(t + " / bilateral filter");
         const double shadingOnly = pass(t + " / interleaved shading");
         const double evaluations = stat("light-pixel evaluations");
         std::printf("| %s | %s | %s | %s | %s | %s | %s | %s |\n", labels[i].c_str(), formatNumber(sampling).c_str(),

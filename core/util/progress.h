@@ -10,7 +10,8 @@ namespace vplgi {
 // task: what is running ("smcir warm-up"); done of total steps (done == total: finished).
 using ProgressSink = std::function<void(const std::string& task, int done, int total)>;
 
-// "\r<task> [#####     ] done/total" on stderr, a newline when done == total.
+// "\r<task> [#####     ] done/total" on stderr, a newline when done == total; when stderr is not a
+// terminal, only the finished bar.
 ProgressSink terminalProgressBar();
 
 } // namespace vplgi

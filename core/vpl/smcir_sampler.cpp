@@ -1,4 +1,5 @@
 #include "core/vpl/smcir_sampler.h"
+#include "core/vpl/vpl_gather.h"
 
 #include <algorithm>
 #include <atomic>
@@ -62,9 +63,7 @@ void SMCIRParams::visitParams(ParamVisitor& v)
 
 float computeClampGeometry(const SMCIRParams& params, float sceneDiagonal)
 {
-    if (!(params.clampScale > 0.0f) || !(sceneDiagonal > 0.0f)) return 0.0f;
-    const float d = params.clampScale * sceneDiagonal / std::sqrt(static_cast<float>(params.vplCount));
-    return 1.0f / (d * d);
+    return clampGeometryFor(params.clampScale, params.vplCount, sceneDiagonal);
 }
 
 void configureSMCIRReference(const SMCIRParams& params, float sceneDiagonal, PathTracerParams& reference,

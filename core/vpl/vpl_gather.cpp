@@ -9,6 +9,13 @@
 
 namespace vplgi {
 
+float clampGeometryFor(float clampScale, int vplCount, float sceneDiagonal)
+{
+    if (!(clampScale > 0.0f) || !(sceneDiagonal > 0.0f) || vplCount < 1) return 0.0f;
+    const float d = clampScale * sceneDiagonal / std::sqrt(static_cast<float>(vplCount));
+    return 1.0f / (d * d);
+}
+
 glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,
                      const VPLGatherParams& params, int subset)
 {

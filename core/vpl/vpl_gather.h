@@ -24,6 +24,11 @@ struct VPLGatherParams {
                                 // scale of glsl/shared/vpl.h (GL pixel rows, bottom up, as the GPU)
 };
 
+// G_max = 1/d^2 with d = clampScale * sceneDiagonal / sqrt(vplCount): the clamp follows the expected
+// VPL spacing, so it relaxes as the budget grows (SMCIR 5.4; smcir.clampScale, ir.clampScale).
+// 0 when clampScale is 0 (no clamping).
+float clampGeometryFor(float clampScale, int vplCount, float sceneDiagonal);
+
 // Indirect radiance reflected at `point` towards `wo` (unit, away from the surface), from the VPLs
 // of interleaving class `subset` (slots i with i mod tile^2 = subset; all of them when tile = 1).
 glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoint& point, const glm::vec3& wo,

@@ -9,12 +9,13 @@ namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct", "smcir", "smcir-rt"};
+    return {"direct", "ir", "smcir", "smcir-rt"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
 {
     if (name == "direct") return std::make_unique<DirectTechnique>();
+    if (name == "ir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::IR);
     if (name == "smcir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::SMCIR);
     if (name == "smcir-rt") return std::make_unique<SMCIRRayTracedTechnique>();
     std::string known;

@@ -9,6 +9,7 @@
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "glsl/shared/bindings.h"
+#include "glsl/shared/shadow_atlas.h"
 #include "glsl/shared/vpl.h"
 
 namespace vplgi {
@@ -29,7 +30,8 @@ void VPLRenderParams::visitParams(ParamVisitor& v, const std::string& prefix)
     v.field(prefix + ".shadowBatch", shadowBatch, 1, 65536, "VPLs whose cube faces are rendered per batch");
     v.field(prefix + ".rebuildEveryFrame", rebuildEveryFrame,
             "re-render every shadow map every frame instead of the changed ones (a yardstick)");
-    v.field(prefix + ".filter", filter, "cross-bilateral filter over the interleaved result (section 4)");
+    filter.visitParams(v, prefix + ".filter.");
+    v.field(prefix + ".debugVPL", debugVPL, 0, 1 << 20, "the slot whose paraboloid map the <technique>.map view shows");
 }
 
 VPLTechnique::VPLTechnique(Source source) : mSource(source) {}
@@ -38,12 +40,19 @@ VPLTechnique::~VPLTechnique() = default; // the pipeline joins its worker
 
 std::string_view VPLTechnique::name() const
 {
-    return "smcir";
+    return mSource == Source::SMCIR ? "smcir" : "ir";
 }
 
 void VPLTechnique::visitParams(ParamVisitor& v)
 {
-    mSMCIR.visitParams(v);
+    if (mSource == Source::SMCIR) {
+        mSMCIR.visitParams(v);
+    } else {
+        mIR.visitParams(v);
+        v.field("ir.clampScale", mIRClampScale, 0.0f, 1000.0f,
+                "VPL clamping as smcir.clampScale: G_max = 1/d^2, d = clampScale * D / sqrt(I); 0 = none "
+                "(the paper's comparisons clamp every method alike)");
+    }
     mRender.visitParams(v, prefix());
     v.field(prefix() + ".synchronous", mSynchronous,
             "run the sampler step on the render thread (no overlap with the GPU frame; for clean timings)");
@@ -51,12 +60,13 @@ void VPLTechnique::visitParams(ParamVisitor& v)
 
 int VPLTechnique::vplCount() const
 {
-    return mSMCIR.vplCount;
+    return mSource == Source::SMCIR ? mSMCIR.vplCount : mIR.vplCount;
 }
 
 float VPLTechnique::clampGeometry() const
 {
-    return computeClampGeometry(mSMCIR, mRays->sceneScale());
+    if (mSource == Source::SMCIR) return computeClampGeometry(mSMCIR, mRays->sceneScale());
+    return clampGeometryFor(mIRClampScale, mIR.vplCount, mRays->sceneScale());
 }
 
 void VPLTechnique::setScene(const SceneContext& context)
@@ -69,6 +79,7 @@ void VPLTechnique::setScene(const SceneContext& context)
     mShading = std::make_unique<FullscreenPass>(context.shaders, "VPL shading", "passes/vpl_shading.frag");
     gl::RenderTargetDesc desc = gl::RenderTargetDesc::colors({GL_RGBA32F}, {"interleaved indirect"});
     mInterleaved = gl::RenderTarget("VPL interleaved shading", desc);
+    mFilter = std::make_unique<CrossBilateralFilter>(context.shaders);
     startPipeline();
     createShadowMaps();
 }
@@ -78,7 +89,12 @@ void VPLTechnique::startPipeline()
     mPipeline.reset(); // joins a running step before its sampler goes
     mRendered = nullptr;
     mMapsGeneration.reset();
-    mPipeline = std::make_unique<VPLPipeline>(std::make_unique<SMCIRSampler>(*mScene, *mRays, mSMCIR), mRays);
+    std::unique_ptr<VPLSampler> sampler;
+    if (mSource == Source::SMCIR)
+        sampler = std::make_unique<SMCIRSampler>(*mScene, *mRays, mSMCIR);
+    else
+        sampler = std::make_unique<IRSampler>(*mScene, *mRays, mIR);
+    mPipeline = std::make_unique<VPLPipeline>(std::move(sampler), mRays);
 }
 
 void VPLTechnique::createShadowMaps()
@@ -100,6 +116,7 @@ void VPLTechnique::createShadowMaps()
 void VPLTechnique::reloadShaders(const gl::ShaderLoader& shaders)
 {
     mShading->reloadShaders(shaders);
+    mFilter->reloadShaders(shaders);
     if (mShadowMaps) mShadowMaps->reloadShaders(shaders);
 }
 
@@ -171,10 +188,9 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
         program.set("uDepthBias", mRender.depthBias);
         mShading->render(mInterleaved);
     }
-    // 4. The cross-bilateral filter (section 4).
-    gl::PassTimer::Scope scope(frame.timer, "filter");
-    glCopyImageSubData(mInterleaved.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0,
-                       0, 0, 0, frame.width, frame.height, 1);
+    // 4. The cross-bilateral filter (section 4) over the interleaved result, into the indirect target.
+    mFilter->apply(gbuffer, mInterleaved.color(0), target.target, BilateralFilterView::fromCamera(frame.camera),
+                   mRender.filter, FullscreenDraw::Blend::None, &frame.timer);
 }
 
 void VPLTechnique::shadeRayTraced(const FrameContext& frame, const gl::RenderTarget& into)
@@ -199,12 +215,12 @@ void VPLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
     const std::string p = prefix() + ".";
     // Read every frame: the clamp, the shading and shadow-test settings, where the step runs.
     static const std::set<std::string> cheap = {"clampScale", "synchronous", "shading", "interleaveTile", "visibility",
-                                                "normalOffset", "depthBias", "rebuildEveryFrame", "filter"};
+                                                "normalOffset", "depthBias", "rebuildEveryFrame", "debugVPL"};
     bool restart = false, maps = false;
     for (const std::string& key : changedKeys) {
         if (key.rfind(p, 0) != 0) continue;
         const std::string field = key.substr(p.size());
-        if (cheap.count(field)) continue;
+        if (cheap.count(field) || field.rfind("filter.", 0) == 0) continue;
         if (field == "shadowMapSize" || field == "shadowBatch")
             maps = true;
         else
@@ -231,7 +247,46 @@ std::vector<std::pair<std::string, double>> VPLTechnique::frameStats() const
 
 void VPLTechnique::configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const
 {
-    configureSMCIRReference(mSMCIR, mRays->sceneScale(), params, explicitKeys);
+    if (mSource == Source::SMCIR) {
+        configureSMCIRReference(mSMCIR, mRays->sceneScale(), params, explicitKeys);
+        return;
+    }
+    // IR as SMCIR (section 5 compares every method against the same reference): untextured bounces,
+    // the same clamp, and the bounce cap: a VPL deposited at hit j reflects light that already
+    // reflected j - 1 times, and the primary hit reflects once more: at most 1 + bounces.
+    if (!explicitKeys.count("reference.untexturedBounces")) params.untexturedBounces = !mIR.texturedVPLs;
+    const float clamp = clampGeometry();
+    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
+    if (!explicitKeys.count("reference.maxDepth")) params.maxDepth = 1 + mIR.bounces;
+}
+
+std::vector<DebugView> VPLTechnique::debugViews() const
+{
+    const std::string t(name());
+    std::vector<DebugView> views;
+    const float range = mRays ? mRays->sceneScale() : 1.0f;
+    DebugView maps{t + ".maps", "paraboloid shadow maps of every VPL slot: distance [0, scene diagonal]",
+                   mShadowMaps ? &mShadowMaps->maps() : nullptr, shared::kDebugViewScalar, {0.0f, range}};
+    maps.layerCount = 0;
+    views.push_back(maps);
+    DebugView map{t + ".map", "the paraboloid shadow map of VPL " + t + ".debugVPL: distance [0, scene diagonal]",
+                  mShadowMaps ? &mShadowMaps->maps() : nullptr, shared::kDebugViewScalar, {0.0f, range}};
+    if (mShadowMaps) {
+        const int size = mShadowMaps->params().mapSize;
+        const int slot = std::min(mRender.debugVPL, mShadowMaps->params().slots - 1);
+        const glm::ivec3 tile = shared::shadowAtlasTileFromIndex(slot, mShadowMaps->layout().tilesPerRow);
+        map.layer = tile.z;
+        map.rect = glm::ivec4(tile.x * size, tile.y * size, size, size);
+    }
+    views.push_back(map);
+    DebugView faces{t + ".faces", "hemisphere-cube faces of the last batch of VPLs rendered: window depth",
+                    mShadowMaps ? &mShadowMaps->faces().texture() : nullptr, shared::kDebugViewScalar,
+                    {0.9f, 1.0f}};
+    faces.layerCount = 0;
+    views.push_back(faces);
+    views.push_back({t + ".interleaved", "indirect light before the cross-bilateral filter (the 4x4 pattern)",
+                     mInterleaved ? &mInterleaved.color(0) : nullptr, shared::kDebugViewColor});
+    return views;
 }
 
 } // namespace vplgi

@@ -50,9 +50,11 @@
 #include <string>
 
 #include "../api/render_target.h"
+#include "../passes/bilateral_filter.h"
 #include "../passes/fullscreen_pass.h"
 #include "../passes/vpl_shadow_maps.h"
 #include "core/trace/ray_scene.h"
+#include "core/vpl/ir_sampler.h"
 #include "core/vpl/smcir_sampler.h"
 #include "core/vpl/vpl_gather.h"
 #include "core/vpl/vpl_pipeline.h"
@@ -72,14 +74,15 @@ struct VPLRenderParams {
     float depthBias = 0.02f;    // shadow test: lit while |x - y| <= stored (1 + depthBias); ours
     int shadowBatch = 256;      // VPLs whose cube faces are rendered per batch [1, 65536]
     bool rebuildEveryFrame = false; // re-render every map every frame (the lazy update's yardstick)
-    bool filter = true;         // the cross-bilateral filter (section 4)
+    BilateralFilterParams filter;   // the cross-bilateral filter (section 4): keys "<technique>.filter.*"
+    int debugVPL = 0;           // the slot whose paraboloid map the "<technique>.map" view shows
 
     void visitParams(ParamVisitor& visitor, const std::string& prefix);
 };
 
 class VPLTechnique final : public Technique {
 public:
-    enum class Source { SMCIR };
+    enum class Source { SMCIR, IR };
     explicit VPLTechnique(Source source);
     ~VPLTechnique() override;
     std::string_view name() const override;
@@ -90,6 +93,7 @@ public:
     void reloadShaders(const gl::ShaderLoader& shaders) override;
     void applyParamChanges(const std::set<std::string>& changedKeys) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
+    std::vector<DebugView> debugViews() const override;
     void configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const override;
 
     // For tests: the paraboloid maps (after render()).
@@ -106,6 +110,8 @@ private:
 
     Source mSource;
     SMCIRParams mSMCIR;
+    IRParams mIR;
+    float mIRClampScale = 2.0f; // ir.clampScale: the same clamp as smcir.clampScale, for ir's budget
     VPLRenderParams mRender;
     bool mSynchronous = false;
     const Scene* mScene = nullptr;
@@ -118,6 +124,7 @@ private:
     std::unique_ptr<VPLShadowMaps> mShadowMaps;
     std::optional<std::uint64_t> mMapsGeneration; // the set generation the maps show
     std::unique_ptr<FullscreenPass> mShading;
+    std::unique_ptr<CrossBilateralFilter> mFilter;
     gl::Buffer mVPLBuffer;
     gl::RenderTarget mInterleaved; // the shading pass's output, before the filter
     int mFacesRendered = 0;

@@ -86,7 +86,7 @@ TEST_CASE("smcir: exhaustive shadow-map shading against the ray-traced gather of
     const Camera& camera = scene.cameras[0];
     const int width = 64, height = 64;
     const Settings settings = {{"smcir.vplCount", "256"},        {"smcir.warmupIterations", "3"},
-                               {"smcir.shading", "exhaustive"},  {"smcir.filter", "false"},
+                               {"smcir.shading", "exhaustive"},  {"smcir.filter.enabled", "false"},
                                {"smcir.synchronous", "true"}};
     std::unique_ptr<Renderer> renderer = makeRenderer(scene, "smcir", settings);
     const Rendered gpu = renderIndirect(*renderer, camera, width, height);
@@ -178,7 +178,7 @@ TEST_CASE("smcir on the furnace: interleaved shading averages to the CPU gather 
     const Settings settings = {{"smcir.vplCount", "4096"},       {"smcir.warmupIterations", "10"},
                                {"smcir.radiosityBounces", "40"}, // 0.5^40: truncation far below 1%
                                {"smcir.radiositySamples", "64"}, {"smcir.shadowMapSize", "16"},
-                               {"smcir.filter", "false"},        {"smcir.synchronous", "true"}};
+                               {"smcir.filter.enabled", "false"},        {"smcir.synchronous", "true"}};
     std::unique_ptr<Renderer> renderer = makeRenderer(scene, "smcir", settings);
     const Rendered gpu = renderIndirect(*renderer, camera, width, height);
 
@@ -298,12 +298,13 @@ std::uint64_t hashOf(const std::vector<float>& values)
 
 } // namespace
 
-TEST_CASE("smcir: the same seed gives the same image, with or without the worker thread", "[image][smcir][vpl-determinism]")
+TEST_CASE("smcir and ir: the same seed gives the same image, with or without the worker thread", "[image][smcir][vpl-determinism]")
 {
     test::ensureGLContext();
-    for (const std::string technique : {"smcir"}) {
+    for (const std::string technique : {"smcir", "ir"}) {
         const std::string p = technique + ".";
-        const Settings base = {{p + "vplCount", "64"}, {p + "shadowMapSize", "16"}, {"smcir.warmupIterations", "2"}};
+        Settings base = {{p + "vplCount", "64"}, {p + "shadowMapSize", "16"}};
+        if (technique == "smcir") base.emplace_back("smcir.warmupIterations", "2");
         Settings sync = base;
         sync.emplace_back(p + "synchronous", "true");
         const FramesResult withWorker = renderFrames(technique, base, 4);
