@@ -125,6 +125,7 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
     FrameContext frame{camera, width, height, time, mFrameIndex, lightsChanged, mLights, mTimer};
     frame.viewFromWorld = mFrame.viewFromWorld;
     frame.clipFromWorld = mFrame.clipFromWorld;
+    frame.display = mParams.display;
     mTechnique->update(frame);
     {
         gl::PassTimer::Scope scope(mTimer, "gbuffer");

@@ -65,6 +65,8 @@ struct FrameContext {
     glm::mat4 viewFromWorld{1.0f};   // the camera's, as in the frame uniform block
     glm::mat4 clipFromWorld{1.0f};
     glm::vec2 jitter{0.0f};          // sub-pixel offset of this frame's projection [pixels] (0: none yet)
+    std::string display{};           // renderer.display this frame: a technique draws a debug view's
+                                     // overlay only while it is shown
 };
 
 // HDR indirect radiance [W/(m^2 sr)] at each pixel (one RGBA32F colour attachment), cleared to zero

@@ -14,6 +14,21 @@
 
 namespace vplgi {
 
+namespace {
+
+gl::Program loadDebugProgram(const gl::ShaderLoader& shaders)
+{
+    return shaders.load("VPL debug views",
+                        {{GL_VERTEX_SHADER, "passes/vpl_debug.vert"}, {GL_FRAGMENT_SHADER, "passes/vpl_debug.frag"}});
+}
+
+float luminance(const glm::vec3& c)
+{
+    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+} // namespace
+
 void VPLRenderParams::visitParams(ParamVisitor& v, const std::string& prefix)
 {
     v.field(prefix + ".shadowMapSize", shadowMapSize, 4, 4096, "paraboloid shadow map resolution per VPL (section 4: 128)");
@@ -80,6 +95,12 @@ void VPLTechnique::setScene(const SceneContext& context)
     gl::RenderTargetDesc desc = gl::RenderTargetDesc::colors({GL_RGBA32F}, {"interleaved indirect"});
     mInterleaved = gl::RenderTarget("VPL interleaved shading", desc);
     mFilter = std::make_unique<CrossBilateralFilter>(context.shaders);
+    mDebugProgram = loadDebugProgram(context.shaders);
+    mEmptyVertexArray = gl::VertexArray("VPL debug points");
+    mSplats = gl::RenderTarget("VPL splats", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"splats"}));
+    gl::RenderTargetDesc overhead = gl::RenderTargetDesc::colors({GL_RGBA32F}, {"overhead"});
+    overhead.depthFormat = GL_DEPTH_COMPONENT32F;
+    mOverhead = gl::RenderTarget("VPL overhead view", overhead);
     startPipeline();
     createShadowMaps();
 }
@@ -117,6 +138,7 @@ void VPLTechnique::reloadShaders(const gl::ShaderLoader& shaders)
 {
     mShading->reloadShaders(shaders);
     mFilter->reloadShaders(shaders);
+    mDebugProgram = loadDebugProgram(shaders);
     if (mShadowMaps) mShadowMaps->reloadShaders(shaders);
 }
 
@@ -191,6 +213,83 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
     // 4. The cross-bilateral filter (section 4) over the interleaved result, into the indirect target.
     mFilter->apply(gbuffer, mInterleaved.color(0), target.target, BilateralFilterView::fromCamera(frame.camera),
                    mRender.filter, FullscreenDraw::Blend::None, &frame.timer);
+
+    // Debug overlays, only while shown: VPLs as splats coloured by intensity (the brightest at 4),
+    // and the overhead view.
+    const std::string t(name());
+    if (frame.display == t + ".splats" || frame.display == t + ".overhead") {
+        float brightest = 0.0f;
+        for (const shared::GpuVPL& v : gpu)
+            brightest = std::max(brightest, luminance(glm::vec3(v.intensity)));
+        drawDebugOverlay(frame, target.radiance(), frame.display == t + ".overhead",
+                         brightest > 0.0f ? 4.0f / brightest : 0.0f);
+    }
+}
+
+void VPLTechnique::drawDebugOverlay(const FrameContext& frame, const gl::Texture& indirect, bool overhead,
+                                    float colorScale)
+{
+    gl::DebugGroup group(std::string(name()) + " debug overlay");
+    const AABB bounds = mScene->worldBounds();
+    const gl::Program& program = mDebugProgram;
+    glUseProgram(program.id());
+    bindStorageBuffer(shared::kBindingVPLs, mVPLBuffer);
+    program.set("uColorScale", colorScale);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glm::mat4 clipFromWorld = frame.clipFromWorld;
+    if (overhead) {
+        // SMCIR Fig. 3 (bottom): the scene from above. Back faces are culled, so ceilings (which
+        // face down) vanish and wall tops, floors and everything facing up remain.
+        mOverhead.resize(512, 512);
+        mOverhead.clear();
+        mOverhead.bindForDrawing();
+        clipFromWorld = shared::lightViewDirectionalFit(glm::vec3(0.0f, -1.0f, 0.0f), bounds.lower, bounds.upper);
+        program.set("uClipFromWorld", clipFromWorld);
+        program.set("uMode", 0);
+        program.set("uCutHeight", bounds.upper.y + 1.0f);
+        program.set("uHeightRange", glm::vec2(bounds.lower.y, bounds.upper.y));
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        mGpuScene->draw(program, GpuScene::Bind::Geometry); // (it leaves culling off)
+        glDisable(GL_DEPTH_TEST);
+        // The camera frustum: near corners and the corners half a scene diagonal further on.
+        const glm::mat4 worldFromClip = glm::inverse(frame.clipFromWorld);
+        glm::vec3 nearCorner[4], farCorner[4];
+        const glm::vec2 ndc[4] = {{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}};
+        const float reach = 0.5f * glm::length(bounds.extent());
+        for (int i = 0; i < 4; ++i) {
+            const glm::vec4 a = worldFromClip * glm::vec4(ndc[i], -1.0f, 1.0f);
+            const glm::vec4 b = worldFromClip * glm::vec4(ndc[i], 1.0f, 1.0f);
+            nearCorner[i] = glm::vec3(a) / a.w;
+            farCorner[i] = nearCorner[i] + glm::normalize(glm::vec3(b) / b.w - nearCorner[i]) * reach;
+        }
+        std::vector<glm::vec3> lines;
+        for (int i = 0; i < 4; ++i) {
+            lines.insert(lines.end(), {nearCorner[i], nearCorner[(i + 1) % 4], farCorner[i], farCorner[(i + 1) % 4],
+                                       nearCorner[i], farCorner[i]});
+        }
+        glProgramUniform3fv(program.id(), program.uniformLocation("uLines"), 24, &lines[0].x);
+        glBindVertexArray(mEmptyVertexArray.id());
+        program.set("uMode", 2);
+        glDrawArrays(GL_LINES, 0, 24);
+        program.set("uPointSize", 3.0f);
+    } else {
+        mSplats.resize(frame.width, frame.height);
+        glCopyImageSubData(indirect.id(), GL_TEXTURE_2D, 0, 0, 0, 0, mSplats.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                           frame.width, frame.height, 1);
+        mSplats.bindForDrawing();
+        program.set("uClipFromWorld", clipFromWorld);
+        program.set("uPointSize", 3.0f);
+    }
+    program.set("uClipFromWorld", clipFromWorld);
+    program.set("uMode", 1);
+    glBindVertexArray(mEmptyVertexArray.id());
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(mRendered->slots.size()));
+    glBindVertexArray(0);
+    glDisable(GL_PROGRAM_POINT_SIZE);
+    glUseProgram(0);
 }
 
 void VPLTechnique::shadeRayTraced(const FrameContext& frame, const gl::RenderTarget& into)
@@ -281,11 +380,16 @@ std::vector<DebugView> VPLTechnique::debugViews() const
     views.push_back(map);
     DebugView faces{t + ".faces", "hemisphere-cube faces of the last batch of VPLs rendered: window depth",
                     mShadowMaps ? &mShadowMaps->faces().texture() : nullptr, shared::kDebugViewScalar,
-                    {0.9f, 1.0f}};
+                    {0.998f, 1.0f}}; // zNear is 1e-4 of the diagonal: window depth crowds near 1
     faces.layerCount = 0;
     views.push_back(faces);
     views.push_back({t + ".interleaved", "indirect light before the cross-bilateral filter (the 4x4 pattern)",
                      mInterleaved ? &mInterleaved.color(0) : nullptr, shared::kDebugViewColor});
+    views.push_back({t + ".splats", "the VPLs as splats coloured by intensity (the brightest at 4) over the indirect light",
+                     mSplats ? &mSplats.color(0) : nullptr, shared::kDebugViewColor});
+    views.push_back({t + ".overhead",
+                     "the scene from above (ceilings culled), the VPLs and the camera frustum (SMCIR Fig. 3)",
+                     mOverhead ? &mOverhead.color(0) : nullptr, shared::kDebugViewColor});
     return views;
 }
 

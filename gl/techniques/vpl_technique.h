@@ -107,6 +107,7 @@ private:
     float clampGeometry() const;
     int vplCount() const;
     void shadeRayTraced(const FrameContext& frame, const gl::RenderTarget& into);
+    void drawDebugOverlay(const FrameContext& frame, const gl::Texture& indirect, bool overhead, float colorScale);
 
     Source mSource;
     SMCIRParams mSMCIR;
@@ -127,6 +128,10 @@ private:
     std::unique_ptr<CrossBilateralFilter> mFilter;
     gl::Buffer mVPLBuffer;
     gl::RenderTarget mInterleaved; // the shading pass's output, before the filter
+    gl::Program mDebugProgram;     // passes/vpl_debug.*: splats and the overhead view, drawn while shown
+    gl::VertexArray mEmptyVertexArray;
+    gl::RenderTarget mSplats;      // the indirect image with the VPLs drawn over it
+    gl::RenderTarget mOverhead;    // the scene from above, the VPLs and the camera frustum (Fig. 3 bottom)
     int mFacesRendered = 0;
     double mEvaluations = 0.0; // light-pixel pairs the shading pass evaluated (estimated: pixels x n / tile^2)
     double mRayTracedMilliseconds = 0.0;
