@@ -43,6 +43,8 @@ void VPLRenderParams::visitParams(ParamVisitor& v, const std::string& prefix)
     v.field(prefix + ".depthBias", depthBias, 0.0f, 1.0f,
             "shadow test: lit while distance <= stored * (1 + bias) (not in the paper)");
     v.field(prefix + ".shadowBatch", shadowBatch, 1, 65536, "VPLs whose cube faces are rendered per batch");
+    v.field(prefix + ".mapsPerFrame", mapsPerFrame, 0, 1 << 20,
+            "most shadow maps made per frame, the rest in later frames (spreads the initial build); 0 = all");
     v.field(prefix + ".rebuildEveryFrame", rebuildEveryFrame,
             "re-render every shadow map every frame instead of the changed ones (a yardstick)");
     filter.visitParams(v, prefix + ".filter.");
@@ -110,6 +112,7 @@ void VPLTechnique::startPipeline()
     mPipeline.reset(); // joins a running step before its sampler goes
     mRendered = nullptr;
     mMapsGeneration.reset();
+    mMapPending.clear();
     std::unique_ptr<VPLSampler> sampler;
     if (mSource == Source::SMCIR)
         sampler = std::make_unique<SMCIRSampler>(*mScene, *mRays, mSMCIR);
@@ -132,6 +135,7 @@ void VPLTechnique::createShadowMaps()
     mShadowMaps.reset();
     mShadowMaps = std::make_unique<VPLShadowMaps>(*mShaders, params);
     mMapsGeneration.reset();
+    mMapPending.clear();
 }
 
 void VPLTechnique::reloadShaders(const gl::ShaderLoader& shaders)
@@ -184,6 +188,18 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
             } else {
                 for (std::uint32_t i = 0; i < set.slots.size(); ++i)
                     dirty.push_back(i);
+            }
+            if (mRender.mapsPerFrame > 0) {
+                // Spread over frames: queue the dirty slots, make the lowest mapsPerFrame of the queue.
+                mMapPending.resize(set.slots.size(), 0);
+                for (std::uint32_t slot : dirty)
+                    mMapPending[slot] = 1;
+                dirty.clear();
+                for (std::uint32_t i = 0; i < mMapPending.size() && static_cast<int>(dirty.size()) < mRender.mapsPerFrame; ++i)
+                    if (mMapPending[i]) {
+                        dirty.push_back(i);
+                        mMapPending[i] = 0;
+                    }
             }
             VPLShadowMaps::Progress progress;
             if (mProgress && dirty.size() > 512)
@@ -314,7 +330,8 @@ void VPLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
     const std::string p = prefix() + ".";
     // Read every frame: the clamp, the shading and shadow-test settings, where the step runs.
     static const std::set<std::string> cheap = {"clampScale", "synchronous", "shading", "interleaveTile", "visibility",
-                                                "normalOffset", "depthBias", "rebuildEveryFrame", "debugVPL"};
+                                                "normalOffset", "depthBias", "rebuildEveryFrame", "debugVPL",
+                                                "mapsPerFrame"};
     bool restart = false, maps = false;
     for (const std::string& key : changedKeys) {
         if (key.rfind(p, 0) != 0) continue;

@@ -73,6 +73,8 @@ struct VPLRenderParams {
     float normalOffset = 1.0f;  // shadow test: lift along the normal [map texels at the distance]; ours
     float depthBias = 0.02f;    // shadow test: lit while |x - y| <= stored (1 + depthBias); ours
     int shadowBatch = 256;      // VPLs whose cube faces are rendered per batch [1, 65536]
+    int mapsPerFrame = 0;       // most maps (re)made per frame, the rest wait for later frames (a viewer
+                                // spreading the initial build); 0 = all at once. Ours
     bool rebuildEveryFrame = false; // re-render every map every frame (the lazy update's yardstick)
     BilateralFilterParams filter;   // the cross-bilateral filter (section 4): keys "<technique>.filter.*"
     int debugVPL = 0;           // the slot whose paraboloid map the "<technique>.map" view shows
@@ -124,6 +126,7 @@ private:
     const VPLSet* mRendered = nullptr;
     std::unique_ptr<VPLShadowMaps> mShadowMaps;
     std::optional<std::uint64_t> mMapsGeneration; // the set generation the maps show
+    std::vector<char> mMapPending;                // slots whose map waits (mapsPerFrame > 0)
     std::unique_ptr<FullscreenPass> mShading;
     std::unique_ptr<CrossBilateralFilter> mFilter;
     gl::Buffer mVPLBuffer;
