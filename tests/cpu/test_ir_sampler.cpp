@@ -369,7 +369,7 @@ TEST_CASE("ir frames: re-seeded sets differ, fixed sequences repeat, changed lis
     CHECK_FALSE(still.vpls().changed.empty());
 }
 
-TEST_CASE("ir is deterministic: same seed, same sets at 1 and 2 threads; other seed differs", "[ir]")
+TEST_CASE("ir is deterministic: same seed, same sets at 1 and 2 threads, other seed differs", "[ir]")
 {
     const Scene scene = makeBuiltinScene("cornell");
     const RayScene rays(scene);

@@ -447,7 +447,7 @@ TEST_CASE("modes split the light transport: full = direct + indirect, clamped <=
     CHECK(meanGrey(clamped) < 0.9 * meanGrey(unclamped));
 }
 
-TEST_CASE("camera rays follow the rasterizer's convention; emitters shine from their front side", "[reference]")
+TEST_CASE("camera rays follow the rasterizer convention, and emitters shine from their front side", "[reference]")
 {
     // An emissive quad on z = -2 filling the top-left quadrant of a camera at the origin looking
     // down -z; its counter-clockwise side faces the camera. The quadrant's edges fall on pixel edges.
@@ -531,7 +531,7 @@ TEST_CASE("reference renders are deterministic across runs and thread counts", "
     CHECK(two.at(23, 15)[3] == 1.0f);
 }
 
-TEST_CASE("time budget stops between passes; progress is reported on the calling thread", "[reference]")
+TEST_CASE("time budget stops between passes, and progress is reported on the calling thread", "[reference]")
 {
     const Scene scene = makeBuiltinScene("cornell");
     const RayScene rays(scene);

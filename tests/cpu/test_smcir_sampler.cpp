@@ -592,7 +592,7 @@ TEST_CASE("smcir converges in a static scene: intensities even out, then stay ev
     CHECK(moved < 0.25 * SMCIRParams{}.maxMoves); // few strong candidates left: the set settles
 }
 
-TEST_CASE("smcir caches radiance keyed by the lights; a light change re-estimates with each VPL's seed", "[smcir]")
+TEST_CASE("smcir caches radiance keyed by the lights, and a light change re-estimates with each VPL's seed", "[smcir]")
 {
     FurnaceParams furnace;
     Scene scene = makeFurnace(furnace);
