@@ -2,10 +2,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <vector>
 
 #include "core/scene/builtin_scenes.h"
 #include "core/trace/ray_scene.h"
 #include "core/vpl/vpl_gather.h"
+#include "glsl/shared/vpl.h"
 #include "measured.h"
 
 using namespace vplgi;
@@ -153,4 +155,41 @@ TEST_CASE("a VPL set short of its budget (n < I) is normalised by n: empty slots
     // (the budget-normalised 1/I would be -75%).
     MEASURED("VPL set with n < I: mean indirect " << sum / (b.width * b.height) << " vs closed form " << params.albedo * lAll);
     CHECK(sum / (b.width * b.height) == Approx(params.albedo * lAll).epsilon(0.01));
+}
+
+TEST_CASE("interleaving: every aligned 4x4 tile covers every VPL exactly once, and its mean is the full estimator",
+          "[vpl]")
+{
+    // glsl/shared/vpl.h, shared by the GPU shading pass and the CPU gather.
+    const int tile = 4, slots = 100; // 100 is not a multiple of 16: the subsets differ in size
+    for (int tileY = 0; tileY < 3; ++tileY)
+        for (int tileX = 0; tileX < 3; ++tileX) {
+            std::vector<int> seen(slots, 0);
+            for (int y = 0; y < tile; ++y)
+                for (int x = 0; x < tile; ++x) {
+                    const int c = shared::vplInterleaveClass(glm::ivec2(tileX * tile + x, tileY * tile + y), tile);
+                    for (int i = c; i < slots; i += tile * tile)
+                        ++seen[static_cast<std::size_t>(i)];
+                }
+            for (int count : seen)
+                CHECK(count == 1);
+        }
+    // Values v_i: a pixel of class c estimates (16/n) sum_{i in S_c} v_i; the 16 pixels' mean is
+    // (1/n) sum_i v_i (n = valid count, here all slots).
+    std::vector<double> v(slots);
+    double full = 0.0;
+    for (int i = 0; i < slots; ++i) {
+        v[static_cast<std::size_t>(i)] = std::sin(0.37 * i) + 1.5;
+        full += v[static_cast<std::size_t>(i)] / slots;
+    }
+    double mean = 0.0;
+    for (int c = 0; c < tile * tile; ++c) {
+        double sum = 0.0;
+        for (int i = c; i < slots; i += tile * tile)
+            sum += v[static_cast<std::size_t>(i)];
+        mean += sum * shared::vplEstimatorScale(slots, tile) / (tile * tile);
+    }
+    CHECK(mean == Approx(full).epsilon(1e-6)); // float scale factor: 1e-6 relative
+    CHECK(shared::vplEstimatorScale(0, tile) == 0.0f);
+    CHECK(shared::vplEstimatorScale(slots, 1) == 1.0f / slots);
 }

@@ -194,6 +194,8 @@ TEST_CASE("smcir on the furnace: interleaved shading averages to the CPU gather 
     // estimator exactly (glsl/shared/vpl.h); clamping (G_max far above 1/(4R^2)) does not act.
     test::ensureGLContext();
     FurnaceParams furnace;
+    furnace.rings = 48; // a quarter of the default triangles: the test's cost is the sampler and the maps
+    furnace.segments = 96;
     const Scene scene = makeFurnace(furnace);
     const Camera& camera = scene.cameras[0];
     const int width = 32, height = 16; // multiples of the 4 x 4 tiles
@@ -211,8 +213,8 @@ TEST_CASE("smcir on the furnace: interleaved shading averages to the CPU gather 
     const double againstClosedForm = meanLuminance(gpu.indirect) / expected - 1.0;
     MEASURED("smcir furnace, I = 4096, interleaved: mean vs the CPU gather of the same VPLs " << againstGather
              << ", vs rho L_all " << againstClosedForm);
-    CHECK(std::abs(againstGather) < 5e-5); // measured 1.1e-5: float summation order (GPU vs CPU)
-    // The sampler's own bias at I = 4096 (smcir-rt furnace test: +3.5%); 8% as there.
+    CHECK(std::abs(againstGather) < 3e-5); // measured 1.1e-5 and 7.9e-6: float summation order (GPU vs CPU)
+    // The sampler's own bias at I = 4096 (measured +3.3%; smcir-rt furnace test: +3.5%); 8% as there.
     CHECK(std::abs(againstClosedForm) < 0.08);
 }
 
