@@ -40,6 +40,9 @@ void SMCIRParams::visitParams(ParamVisitor& v)
     v.field("smcir.radiositySamples", radiositySamples, 1, 65536, "path-tracer samples per VPL radiance (3.2.3)");
     v.field("smcir.candidateRadianceSamples", candidateRadianceSamples, 0, 65536,
             "samples for candidate radiance screening (line 7); 0 = radiositySamples as in the paper");
+    v.field("smcir.independentRadiance", independentRadiance,
+            "a new VPL's radiance (line 18) is estimated anew with its own seed, independent of the candidate "
+            "estimate it was selected on (false: keep that value, which biases the set high)");
     v.field("smcir.radiosityBounces", radiosityBounces, 1, 1024,
             "most reflections of the radiance paths, counting the one at the VPL (3.2.3: 3)");
     v.field("smcir.knnRender", knnRender, 0, 1024,
@@ -154,7 +157,8 @@ struct SMCIRSampler::SlotState {
     CameraPoint associated;         // 3.2.2 mail box: a camera-visible point that sees the VPL
     std::uint32_t radianceSeed = 0; // 3.2.3: kept for the VPL's life
     std::uint64_t radianceKey = 0;  // radiance cache: the lights (radianceKeyOf) the value was computed for
-    bool screened = false;          // the value is a candidateRadianceSamples screening estimate
+    bool screened = false;          // the value is the candidate's (a screening estimate, or the one it was
+                                    // selected on): line 18 re-estimates it
 };
 
 // A VPL candidate (an element of Y^).
@@ -559,10 +563,13 @@ void SMCIRSampler::assignSlot(std::uint32_t slot, const Candidate& candidate, co
     state.surface = candidate.surface;
     state.origin = candidate.origin;
     state.associated = points[candidate.cameraPoint]; // 3.2.2: the point it was generated from
-    state.radianceSeed = candidate.seed;
-    // A screened candidate (fewer samples than a VPL gets) is re-estimated in full by line 18.
+    // Line 18 re-estimates a screened candidate (fewer samples than a VPL gets) in full, and with
+    // independentRadiance every new VPL, with a lifetime seed of its own: the value it renders with is
+    // then independent of the value it won the selection with (lines 13-17), which would be biased
+    // high (selection keeps the estimates that came out high).
+    state.radianceSeed = mParams.independentRadiance ? mix64(candidate.seed ^ 0x9E3779B97F4A7C15ull) : candidate.seed;
     state.radianceKey = mRadianceKey;
-    state.screened = candidateSamples() != mParams.radiositySamples;
+    state.screened = mParams.independentRadiance || candidateSamples() != mParams.radiositySamples;
 }
 
 int SMCIRSampler::candidateSamples() const
@@ -658,7 +665,7 @@ void SMCIRSampler::initialize(const FrameSnapshot& snapshot, const Progress& pro
     Clock::time_point t = Clock::now();
     for (std::size_t i = 0; i < candidates.size() && i < mSet.slots.size(); ++i)
         assignSlot(static_cast<std::uint32_t>(i), candidates[i], points);
-    estimateStaleRadiance(); // only screened candidates (candidateRadianceSamples) are stale here
+    estimateStaleRadiance(); // only new VPLs (independentRadiance, candidateRadianceSamples) are stale here
     mTimes.radiosity += millisecondsSince(t);
     t = Clock::now();
     estimateRenderingDensities();

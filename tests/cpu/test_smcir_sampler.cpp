@@ -263,9 +263,9 @@ TEST_CASE("smcir parameters: paper defaults, one field list, eq. (8)", "[smcir][
                             "smcir.strongFraction", "smcir.cameraSamplesX", "smcir.cameraSamplesY",
                             "smcir.warmupIterations", "smcir.seed", "smcir.candidateRadianceSamples",
                             "smcir.candidateDensityGrid", "smcir.texturedVPLs", "smcir.clampScale",
-                            "smcir.invalidateEveryFrame"})
+                            "smcir.invalidateEveryFrame", "smcir.independentRadiance"})
         CHECK(values.count(key) == 1);
-    CHECK(values.size() == 20);
+    CHECK(values.size() == 21);
     CHECK(defaults.candidateDensityK == 1);   // 3.2.4: "We set k = 1" (lines 6 and 8)
     CHECK(defaults.texturedVPLs == false);     // 5: "an untextured version of the scene for the VPL generation"
     CHECK(defaults.clampScale > 0.0f);         // 5.4: always clamped
@@ -585,7 +585,10 @@ TEST_CASE("smcir converges in a static scene: intensities even out, then stay ev
     std::printf("measured: smcir maze convergence (I = 512): CoV of I after 1 frame %.3f, after 30 %.3f, frames 31-60 mean %.3f;"
                 " sd(log I) %.3f, %.3f, worst of 31-60 %.3f; moved per frame in 31-60 %.2f\n",
                 firstCoV, thirtyCoV, laterCoV, firstLog, thirtyLog, worstLog, moved);
-    CHECK(thirtyCoV < firstCoV);
+    // The bulk evens out (sd of log I). The CoV is ruled by the few largest intensities, i.e. by the
+    // noise of the VPLs' own radiance estimates, which since independentRadiance the selection no
+    // longer hides by keeping the estimates that came out high (measured 3.31 after 1 frame, 3.87
+    // after 30, 3.34 over frames 31-60): no check on it across the first 30 frames.
     CHECK(thirtyLog < 0.6 * firstLog);
     CHECK(laterCoV < thirtyCoV);
     CHECK(worstLog < 1.05 * thirtyLog);
@@ -602,12 +605,13 @@ TEST_CASE("smcir caches radiance keyed by the lights, and a light change re-esti
     SMCIRSampler sampler(scene, rays, params);
     sampler.initialize(scene.cameras[0]);
 
-    // Same lights: surviving VPLs keep their values bit for bit, and only the candidates are traced.
+    // Same lights: surviving VPLs keep their values bit for bit, and only the candidates and the new
+    // VPLs (their own line-18 estimate: independentRadiance) are traced.
     const std::vector<VPL> before = sampler.vpls().slots;
     sampler.step(scene.cameras[0]);
     const SMCIRStageTimes cached = sampler.lastTimes();
-    CHECK(cached.radianceEstimates == cached.candidates);
     std::set<std::uint32_t> changed(sampler.vpls().changed.begin(), sampler.vpls().changed.end());
+    CHECK(cached.radianceEstimates == cached.candidates + static_cast<int>(changed.size()));
     int survivors = 0, differ = 0;
     for (std::uint32_t slot = 0; slot < 256; ++slot) {
         if (changed.count(slot)) continue;
@@ -625,7 +629,7 @@ TEST_CASE("smcir caches radiance keyed by the lights, and a light change re-esti
     sampler.step(FrameSnapshot::of(scene, scene.cameras[0], 16.0f / 9.0f));
     const SMCIRStageTimes fresh = sampler.lastTimes();
     changed = std::set<std::uint32_t>(sampler.vpls().changed.begin(), sampler.vpls().changed.end());
-    CHECK(fresh.radianceEstimates == fresh.candidates + 256 - static_cast<int>(changed.size()));
+    CHECK(fresh.radianceEstimates == fresh.candidates + 256); // survivors (new lights) and new VPLs
     int notDoubled = 0;
     for (std::uint32_t slot = 0; slot < 256; ++slot) {
         if (changed.count(slot)) continue;
@@ -634,13 +638,14 @@ TEST_CASE("smcir caches radiance keyed by the lights, and a light change re-esti
     CHECK(notDoubled == 0);
     // The same (doubled) lights again: the cache holds.
     sampler.step(scene.cameras[0]);
-    CHECK(sampler.lastTimes().radianceEstimates == sampler.lastTimes().candidates);
+    CHECK(sampler.lastTimes().radianceEstimates ==
+          sampler.lastTimes().candidates + static_cast<int>(sampler.vpls().changed.size()));
     // A snapshot with other lights than the scene's is what the sampler sees (it never reads
     // scene.lights during a step): halving them there re-estimates again.
     FrameSnapshot halved = FrameSnapshot::of(scene, scene.cameras[0], 16.0f / 9.0f);
     halved.lights[0].intensity *= 0.5f;
     sampler.step(halved);
-    CHECK(sampler.lastTimes().radianceEstimates > sampler.lastTimes().candidates);
+    CHECK(sampler.lastTimes().radianceEstimates == sampler.lastTimes().candidates + 256);
 }
 
 TEST_CASE("smcir is deterministic: same seed and cameras give the same set at 1 and 2 threads", "[smcir]")
@@ -818,4 +823,42 @@ TEST_CASE("smcir clamping: G_max = I / (clampScale D)^2 relaxes as I grows", "[s
     CHECK(computeClampGeometry(params, 2.0f) == Approx(8192.0 / 4.0).epsilon(1e-6));
     params.clampScale = 0.0f;
     CHECK(computeClampGeometry(params, 2.0f) == 0.0f);
+}
+
+TEST_CASE("smcir: VPLs render with radiance estimates independent of the ones they were selected on",
+          "[smcir][numbers]")
+{
+    // Lines 9-17 keep the candidates whose (noisy, 16-sample) estimate came out high. Rendering with
+    // that same value is biased high; line 18 with a fresh lifetime seed (independentRadiance) is not.
+    // Measured: the published radiances against a 512-sample estimate at the same points.
+    const Scene scene = makeBuiltinScene("cornell");
+    const RayScene rays(scene);
+    const ReflectedRadianceEstimator accurate(scene, rays, SMCIRParams{}.radiosityBounces);
+    auto publishedOverAccurate = [&](bool independent) {
+        SMCIRParams params = smallParams(256, 100); // the paper's warm-up
+        params.independentRadiance = independent;
+        SMCIRSampler sampler(scene, rays, params);
+        sampler.initialize(scene.cameras[0]);
+        double published = 0.0, truth = 0.0;
+        std::uint32_t seed = 7000;
+        for (const VPL& v : sampler.vpls().slots) {
+            if (!v.valid) continue;
+            Ray ray;
+            ray.origin = v.position + v.normal * (1e-3f * rays.sceneScale());
+            ray.direction = -v.normal;
+            const Hit hit = rays.intersect(ray);
+            REQUIRE(hit.valid());
+            published += luminance(v.radiance);
+            truth += luminance(accurate.estimate(surfaceAt(scene, hit, v.normal), 512, ++seed));
+        }
+        return published / truth - 1.0;
+    };
+    const double coupled = publishedOverAccurate(false);
+    const double independent = publishedOverAccurate(true);
+    MEASURED("smcir VPL radiance after 100 warm-up frames (I = 256), mean published / 512-sample estimate - 1: selected-on "
+             << coupled << ", independent " << independent);
+    // Measured +4.9% selected-on, +0.24% independent. The 512-sample reference has a relative error
+    // of about 1% over 256 VPLs: 3% is 3x that; the coupled value must stand 3% above.
+    CHECK(std::abs(independent) < 0.03);
+    CHECK(coupled > independent + 0.03);
 }
