@@ -270,10 +270,10 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     MEASURED("default scene: ceiling (" << count << " px) mean indirect radiance, smcir " << smcir / count
              << " vs path tracer " << path / count << ": " << relative);
     CHECK(smcir > 0.0);
-    // Measured +25%: SMCIR's own bias at I = 2048 (kNN on a blue-noise set over-estimates 1/p;
-    // smcir-rt, the same sampler with ray-traced visibility, is +15% over the whole image, README),
-    // not the GPU half (same VPLs: -0.3%, first test). 0.4 is 1.6x that bias: the bias moves with
-    // the sampler's defaults, and what this guards is a lit ceiling of the right magnitude.
+    // Measured +23% (+25% before independentRadiance): SMCIR's own bias at I = 2048 after 100
+    // warm-up frames (smcir-rt, the same sampler with ray-traced visibility, is +20% over the whole
+    // image, docs/smcir.md), not the GPU half (same VPLs: -0.3%, first test). 0.4 is 1.7x that
+    // bias: what this guards is a lit ceiling of the right magnitude.
     CHECK(std::abs(relative) < 0.4);
 }
 
@@ -382,10 +382,11 @@ TEST_CASE("smcir on the shared CornellBox.glb (millimetres): shadow maps agree w
              << " (mean |pixel difference| / mean " << pixelsAgainstRays << "), mean vs the path tracer "
              << againstPath);
     CHECK(meanLuminance(truth) > 0.0);
-    // Measured -0.23% and 1.1%: limits about 3x.
-    CHECK(std::abs(againstRays) < 0.007);
+    // Measured -0.23% / -0.31% and 1.1% / 0.98%: limits about 3x.
+    CHECK(std::abs(againstRays) < 0.01);
     CHECK(pixelsAgainstRays < 0.03);
-    // Measured +23%: SMCIR's own bias at I = 512 (the built-in Cornell box: +23% too, README); the
-    // bound (2x) catches a wrong unit or a missing bounce, not the sampler's bias.
-    CHECK(std::abs(againstPath) < 0.5);
+    // Measured +5.8% (+23% before new VPLs got radiance estimates independent of their selection):
+    // SMCIR's own bias at I = 512, which moves with the sampler; the bound catches a wrong unit or a
+    // missing bounce (a bounce is 40-50% of this light).
+    CHECK(std::abs(againstPath) < 0.2);
 }
