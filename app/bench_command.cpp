@@ -184,7 +184,7 @@ void printVPLTable(const std::vector<BenchResult>& results, const std::vector<st
                         "|---|---|---|---|---|---|---|---|\n");
             header = true;
         }
-        const double sampling = stat("sampler: total ms") + stat("ir: ms"); // smcir or ir
+        const double sampling = stat("sampler: total ms");
         const double maps = pass(t + " / shadow maps");
         const double shading = pass("gbuffer") + pass(t + " / interleaved shading");
         const double filter = pass(t + " / bilateral filter");

@@ -23,6 +23,34 @@
 
 namespace vplgi {
 
+CameraRays::CameraRays(const Camera& camera, int width, int height)
+    : mWidth(width), mHeight(height), mEye(camera.position),
+      mWorldFromClip(glm::inverse(
+          glm::dmat4(camera.clipFromView(static_cast<float>(width) / static_cast<float>(height)) * camera.viewFromWorld())))
+{
+}
+
+Ray CameraRays::at(double x, double y) const
+{
+    const double ndcX = x / mWidth * 2.0 - 1.0;
+    const double ndcY = 1.0 - y / mHeight * 2.0;
+    const glm::dvec3 nearPoint = unproject(ndcX, ndcY, -1.0);
+    const glm::dvec3 farPoint = unproject(ndcX, ndcY, 1.0);
+    const glm::dvec3 direction = glm::normalize(farPoint - mEye);
+    Ray ray;
+    ray.origin = glm::vec3(mEye);
+    ray.direction = glm::vec3(direction);
+    ray.tMin = static_cast<float>(std::max(0.0, glm::dot(nearPoint - mEye, direction)));
+    ray.tMax = static_cast<float>(glm::dot(farPoint - mEye, direction));
+    return ray;
+}
+
+glm::dvec3 CameraRays::unproject(double x, double y, double z) const
+{
+    const glm::dvec4 p = mWorldFromClip * glm::dvec4(x, y, z, 1.0);
+    return glm::dvec3(p) / p.w;
+}
+
 void PathTracerParams::visitParams(ParamVisitor& v)
 {
     v.field("reference.spp", spp, 1, 1 << 24, "samples per pixel");
@@ -551,42 +579,6 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
     return radiance;
 }
 
-// Camera rays through pixel positions, as the rasterizer projects (see the header).
-class CameraRays {
-public:
-    CameraRays(const Camera& camera, int width, int height)
-        : mWidth(width), mHeight(height), mEye(camera.position),
-          mWorldFromClip(glm::inverse(glm::dmat4(
-              camera.clipFromView(static_cast<float>(width) / static_cast<float>(height)) * camera.viewFromWorld())))
-    {
-    }
-
-    Ray at(double x, double y) const
-    {
-        const double ndcX = x / mWidth * 2.0 - 1.0;
-        const double ndcY = 1.0 - y / mHeight * 2.0;
-        const glm::dvec3 nearPoint = unproject(ndcX, ndcY, -1.0);
-        const glm::dvec3 farPoint = unproject(ndcX, ndcY, 1.0);
-        const glm::dvec3 direction = glm::normalize(farPoint - mEye);
-        Ray ray;
-        ray.origin = glm::vec3(mEye);
-        ray.direction = glm::vec3(direction);
-        ray.tMin = static_cast<float>(std::max(0.0, glm::dot(nearPoint - mEye, direction)));
-        ray.tMax = static_cast<float>(glm::dot(farPoint - mEye, direction));
-        return ray;
-    }
-
-private:
-    glm::dvec3 unproject(double x, double y, double z) const
-    {
-        const glm::dvec4 p = mWorldFromClip * glm::dvec4(x, y, z, 1.0);
-        return glm::dvec3(p) / p.w;
-    }
-
-    int mWidth, mHeight;
-    glm::dvec3 mEye;
-    glm::dmat4 mWorldFromClip;
-};
 
 void checkParams(int width, int height, const PathTracerParams& p)
 {

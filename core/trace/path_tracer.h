@@ -135,6 +135,21 @@ namespace vplgi {
 class ParamVisitor;
 struct SurfacePoint;
 
+// Camera rays through pixel positions (x, y in pixels, rows top to bottom; x + 0.5 is a pixel
+// centre), as the rasterizer projects: from the eye through the NDC point, clipped to the near and
+// far planes (the prose above). Double precision.
+class CameraRays {
+public:
+    CameraRays(const Camera& camera, int width, int height);
+    Ray at(double x, double y) const;
+
+private:
+    glm::dvec3 unproject(double x, double y, double z) const;
+    int mWidth, mHeight;
+    glm::dvec3 mEye;
+    glm::dmat4 mWorldFromClip;
+};
+
 struct PathTracerParams {
     enum class Mode { Full = 0, Direct = 1, Indirect = 2, Clamped = 3, OneBounce = 4 };
 

@@ -155,7 +155,8 @@ public:
     void step(const FrameSnapshot& snapshot) override;
 
     const VPLSet& vpls() const override { return mSet; }
-    // "ir: paths", "ir: paths escaped", "ir: escaped fraction", "ir: VPLs", "ir: rays", "ir: ms".
+    // "ir: paths", "ir: paths escaped", "ir: escaped fraction", "ir: VPLs", "ir: rays", and
+    // "sampler: total ms" (the name every VPL sampler uses).
     StatList stats() const override;
     const IRStats& lastStats() const { return mStats; }
     const IRParams& params() const { return mParams; }

@@ -72,10 +72,8 @@ float computeClampGeometry(const SMCIRParams& params, float sceneDiagonal)
 void configureSMCIRReference(const SMCIRParams& params, float sceneDiagonal, PathTracerParams& reference,
                              const std::set<std::string>& explicitKeys)
 {
-    if (!explicitKeys.count("reference.untexturedBounces")) reference.untexturedBounces = !params.texturedVPLs;
-    const float clamp = computeClampGeometry(params, sceneDiagonal);
-    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) reference.clampGeometry = clamp;
-    if (!explicitKeys.count("reference.maxDepth")) reference.maxDepth = 1 + params.radiosityBounces;
+    configureVPLReference(params.texturedVPLs, computeClampGeometry(params, sceneDiagonal), params.radiosityBounces,
+                          reference, explicitKeys);
 }
 
 int computeRenderingK(int vplCount)

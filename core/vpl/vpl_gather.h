@@ -9,9 +9,13 @@
 // shared BRDF (glsl/shared/brdf.h) and I(y) = L(y)/p(y).
 #pragma once
 
+#include <set>
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "core/util/image_io.h"
+#include "core/trace/path_tracer.h"
 #include "core/trace/ray_scene.h"
 #include "core/scene/surface.h"
 #include "core/vpl/vpl.h"
@@ -28,6 +32,14 @@ struct VPLGatherParams {
 // VPL spacing, so it relaxes as the budget grows (SMCIR 5.4; smcir.clampScale, ir.clampScale).
 // 0 when clampScale is 0 (no clamping).
 float clampGeometryFor(float clampScale, int vplCount, float sceneDiagonal);
+
+// What a path-traced reference must simulate to be compared with a VPL method (smcir, smcir-rt, ir):
+// untextured bounces unless its VPLs see textures (SMCIR section 5), the same clamp (5.4; 0 =
+// none), and the same bounce cap: the reflection at the primary hit plus `vplBounces`, the most
+// reflections the light a VPL carries has undergone, counting the one at the VPL. Keys in
+// `explicitKeys` (reference.*) are left as the user set them.
+void configureVPLReference(bool texturedVPLs, float clampGeometry, int vplBounces, PathTracerParams& reference,
+                           const std::set<std::string>& explicitKeys);
 
 // Indirect radiance reflected at `point` towards `wo` (unit, away from the surface), from the VPLs
 // of interleaving class `subset` (slots i with i mod tile^2 = subset; all of them when tile = 1).

@@ -150,4 +150,14 @@ std::vector<float> readTextureRGBA32F(const Texture& texture, int layer)
     return pixels;
 }
 
+void uploadTopDownRGBA32F(const Texture& texture, const std::vector<float>& topDownPixels, int width, int height)
+{
+    const std::size_t row = static_cast<std::size_t>(width) * 4;
+    std::vector<float> flipped(topDownPixels.size());
+    for (int y = 0; y < height; ++y)
+        std::copy_n(&topDownPixels[static_cast<std::size_t>(height - 1 - y) * row], row,
+                    &flipped[static_cast<std::size_t>(y) * row]);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, flipped.data());
+}
+
 } // namespace vplgi::gl

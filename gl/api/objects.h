@@ -164,5 +164,8 @@ void uploadVector(Buffer& buffer, const std::string& name, const std::vector<T>&
 
 // Reads level 0 of a 2D texture (layer `layer` of an array) as RGBA floats, rows bottom to top (GL order).
 std::vector<float> readTextureRGBA32F(const Texture& texture, int layer = 0);
+// Uploads width x height RGBA float pixels given with rows top to bottom (as CPU images are) into
+// level 0 of a 2D texture, whose rows run bottom to top.
+void uploadTopDownRGBA32F(const Texture& texture, const std::vector<float>& topDownPixels, int width, int height);
 
 } // namespace vplgi::gl

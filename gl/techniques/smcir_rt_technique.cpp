@@ -53,12 +53,7 @@ void SMCIRRayTracedTechnique::render(const FrameContext& frame, const GBuffer&, 
     VPLGatherParams gather;
     gather.clampGeometry = computeClampGeometry(mParams, mRays->sceneScale());
     const ImageRGBA32F image = renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, *mRendered, gather);
-    // GL rows run bottom to top.
-    const std::size_t row = static_cast<std::size_t>(frame.width) * 4;
-    std::vector<float> flipped(image.pixels.size());
-    for (int y = 0; y < frame.height; ++y)
-        std::copy_n(&image.pixels[static_cast<std::size_t>(frame.height - 1 - y) * row], row, &flipped[y * row]);
-    glTextureSubImage2D(target.radiance().id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
+    gl::uploadTopDownRGBA32F(target.radiance(), image.pixels, frame.width, frame.height);
     mGatherMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -316,11 +316,7 @@ void VPLTechnique::shadeRayTraced(const FrameContext& frame, const gl::RenderTar
     gather.interleaveTile = mRender.shading == VPLRenderParams::Exhaustive ? 1 : std::max(mRender.interleaveTile, 1);
     const ImageRGBA32F image =
         renderVPLGather(*mScene, *mRays, frame.camera, frame.width, frame.height, *mRendered, gather);
-    const std::size_t row = static_cast<std::size_t>(frame.width) * 4; // GL rows run bottom to top
-    std::vector<float> flipped(image.pixels.size());
-    for (int y = 0; y < frame.height; ++y)
-        std::copy_n(&image.pixels[static_cast<std::size_t>(frame.height - 1 - y) * row], row, &flipped[y * row]);
-    glTextureSubImage2D(into.color(0).id(), 0, 0, 0, frame.width, frame.height, GL_RGBA, GL_FLOAT, flipped.data());
+    gl::uploadTopDownRGBA32F(into.color(0), image.pixels, frame.width, frame.height);
     mRayTracedMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -367,13 +363,9 @@ void VPLTechnique::configureReference(PathTracerParams& params, const std::set<s
         configureSMCIRReference(mSMCIR, mRays->sceneScale(), params, explicitKeys);
         return;
     }
-    // IR as SMCIR (section 5 compares every method against the same reference): untextured bounces,
-    // the same clamp, and the bounce cap: a VPL deposited at hit j reflects light that already
-    // reflected j - 1 times, and the primary hit reflects once more: at most 1 + bounces.
-    if (!explicitKeys.count("reference.untexturedBounces")) params.untexturedBounces = !mIR.texturedVPLs;
-    const float clamp = clampGeometry();
-    if (!explicitKeys.count("reference.clampGeometry") && clamp > 0.0f) params.clampGeometry = clamp;
-    if (!explicitKeys.count("reference.maxDepth")) params.maxDepth = 1 + mIR.bounces;
+    // IR as SMCIR (section 5 compares every method against the same reference). A VPL deposited at
+    // hit j carries light reflected j times counting the one at the VPL: at most ir.bounces.
+    configureVPLReference(mIR.texturedVPLs, clampGeometry(), mIR.bounces, params, explicitKeys);
 }
 
 std::vector<DebugView> VPLTechnique::debugViews() const

@@ -415,7 +415,7 @@ TEST_CASE("ir behind the VPL pipeline: the published set is the sampler's, with 
     for (const auto& [name, value] : pipeline.stats()) {
         if (name == "ir: paths") paths = value;
         if (name == "ir: escaped fraction") escaped = value;
-        if (name == "ir: ms") ms = value;
+        if (name == "sampler: total ms") ms = value;
     }
     MEASURED("ir cornell (I = 2048, 3 bounces): " << paths << " paths, escaped fraction " << escaped << ", " << ms
              << " ms per frame (2 threads, shared machine)");

@@ -244,17 +244,12 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
 
     // Ceiling pixels: primary hits on a downward-facing surface that does not emit.
-    const glm::mat4 worldFromClip = glm::inverse(camera.clipFromView(1.0f) * camera.viewFromWorld());
+    const CameraRays cameraRays(camera, width, height);
     double smcir = 0.0, path = 0.0;
     int count = 0;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const glm::vec2 ndc((x + 0.5f) / width * 2.0f - 1.0f, 1.0f - (y + 0.5f) / height * 2.0f);
-            const glm::vec4 a = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
-            const glm::vec4 b = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
-            Ray ray;
-            ray.origin = glm::vec3(a) / a.w;
-            ray.direction = glm::normalize(glm::vec3(b) / b.w - ray.origin);
+            const Ray ray = cameraRays.at(x + 0.5, y + 0.5);
             const Hit hit = rays.intersect(ray);
             if (!hit.valid()) continue;
             const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
