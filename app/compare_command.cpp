@@ -317,6 +317,7 @@ CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std:
     const double frames = static_cast<double>(std::max<std::size_t>(1, run.frameErrors.size()));
     for (const ImageErrors& e : run.frameErrors) {
         result.meanErrors.meanAbsToneMapped += e.meanAbsToneMapped / frames;
+        result.meanErrors.p999AbsToneMapped += e.p999AbsToneMapped / frames;
         result.meanErrors.rmse += e.rmse / frames;
         result.meanErrors.relativeMSE += e.relativeMSE / frames;
         result.meanErrors.meanRelativeLuminance += e.meanRelativeLuminance / frames;

@@ -200,12 +200,12 @@ std::string compareTemporalSummary(const CompareReport& report)
 std::string compareCsv(const CompareReport& report)
 {
     std::ostringstream csv;
-    csv << "technique,frames,mean_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
+    csv << "technique,frames,mean_abs_tonemapped,p999_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
            "temporal_abs_e_prime,median_frame_ms,settings\n";
     for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
         csv << t.name << "," << report.frames << "," << imageMetric(report, mean.meanAbsToneMapped, "") << ","
-            << imageMetric(report, mean.rmse, "") << "," << imageMetric(report, mean.relativeMSE, "") << ","
+            << imageMetric(report, mean.p999AbsToneMapped, "") << "," << imageMetric(report, mean.rmse, "") << "," << imageMetric(report, mean.relativeMSE, "") << ","
             << imageMetric(report, mean.meanRelativeLuminance, "") << "," << t.temporal.meanAbsError << ","
             << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << t.settings << "\n";
     }
@@ -235,6 +235,7 @@ std::string compareJson(const CompareReport& report)
         const ImageErrors& mean = t.meanErrors;
         json << "    {\"name\": \"" << t.name << "\", \"settings\": \"" << t.settings
              << "\", \"meanAbsToneMapped\": " << imageMetric(report, mean.meanAbsToneMapped, "null")
+             << ", \"p999AbsToneMapped\": " << imageMetric(report, mean.p999AbsToneMapped, "null")
              << ", \"rmse\": " << imageMetric(report, mean.rmse, "null")
              << ", \"relativeMSE\": " << imageMetric(report, mean.relativeMSE, "null")
              << ", \"meanLuminanceBias\": " << imageMetric(report, mean.meanRelativeLuminance, "null")
@@ -280,7 +281,8 @@ std::string metricsTableRows(const CompareReport& report)
             return report.imageMetrics ? formatNumber(value, digits) + unit : std::string("-");
         };
         table << "<tr><td>" << htmlEscape(t.name) << "</td><td>" << htmlEscape(t.settings) << "</td><td>"
-              << cell(mean.meanAbsToneMapped) << "</td><td>" << cell(mean.rmse) << "</td><td>"
+              << cell(mean.meanAbsToneMapped) << "</td><td>" << cell(mean.p999AbsToneMapped) << "</td><td>"
+              << cell(mean.rmse) << "</td><td>"
               << cell(mean.relativeMSE) << "</td><td>" << cell(100.0 * mean.meanRelativeLuminance, 3, "%")
               << "</td><td>" << formatNumber(t.temporal.meanAbsError) << "</td><td>"
               << formatNumber(t.temporal.meanAbsDerivative) << "</td><td>" << formatNumber(t.medianFrameMs, 4)
@@ -333,7 +335,7 @@ std::string compareHtml(const CompareReport& report)
          << "are measured against the tracked-pixel reference; the image metrics against the full-image one.</p>\n";
     html << "<p>Reference noise: " << htmlEscape(noiseCheckText(report)) << ".</p>\n";
     html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>settings (--set)</th><th>mean |E| (tone-mapped)</th>"
-         << "<th>RMSE</th><th>rel. MSE</th>"
+         << "<th>99.9th pct |E|</th><th>RMSE</th><th>rel. MSE</th>"
          << "<th>mean luminance bias</th><th>avg |E| tracked</th><th>avg |E'| tracked (SMCIR eq. 10)</th>"
          << "<th>median frame [ms]</th></tr>\n"
          << metricsTableRows(report) << "</table>\n<p>All numbers: <a href=\"metrics.csv\">metrics.csv</a>, "

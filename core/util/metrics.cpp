@@ -38,10 +38,12 @@ ImageErrors compareImages(const ImageRGBA32F& method, const ImageRGBA32F& refere
     ImageErrors e;
     const std::size_t pixels = static_cast<std::size_t>(method.width) * method.height;
     double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, sumYm = 0.0, sumYr = 0.0;
+    std::vector<double> absErrors(pixels);
     for (std::size_t p = 0; p < pixels; ++p) {
         const float* a = &method.pixels[p * 4];
         const float* b = &reference.pixels[p * 4];
-        sumAbs += std::abs(toneMappedLuminance(a, exposure) - toneMappedLuminance(b, exposure));
+        absErrors[p] = std::abs(toneMappedLuminance(a, exposure) - toneMappedLuminance(b, exposure));
+        sumAbs += absErrors[p];
         for (int c = 0; c < 3; ++c) {
             double d = double(a[c]) - double(b[c]);
             sumSq += d * d;
@@ -51,6 +53,12 @@ ImageErrors compareImages(const ImageRGBA32F& method, const ImageRGBA32F& refere
         sumYr += 0.2126 * b[0] + 0.7152 * b[1] + 0.0722 * b[2];
     }
     e.meanAbsToneMapped = sumAbs / pixels;
+    // Nearest rank: the smallest error that at least 99.9% of the pixels do not exceed.
+    if (pixels > 0) {
+        const std::size_t rank = static_cast<std::size_t>(std::ceil(0.999 * static_cast<double>(pixels))) - 1;
+        std::nth_element(absErrors.begin(), absErrors.begin() + static_cast<std::ptrdiff_t>(rank), absErrors.end());
+        e.p999AbsToneMapped = absErrors[rank];
+    }
     e.rmse = std::sqrt(sumSq / (3.0 * pixels));
     e.relativeMSE = sumRel / (3.0 * pixels);
     e.meanRelativeLuminance = sumYr > 0.0 ? sumYm / sumYr - 1.0 : 0.0;

@@ -17,6 +17,7 @@ double toneMappedLuminance(const float* rgb, double exposure);
 
 struct ImageErrors {
     double meanAbsToneMapped = 0.0; // mean |T(Y_method) - T(Y_ref)| (SMCIR's |E| on a single frame)
+    double p999AbsToneMapped = 0.0; // 99.9th percentile of |T(Y_method) - T(Y_ref)| over pixels (the spikes: VSGL)
     double rmse = 0.0;              // sqrt(mean over pixels and RGB of (a - b)^2), linear radiance
     double relativeMSE = 0.0;       // mean over pixels and RGB of (a - b)^2 / (b^2 + 0.01)
     double meanRelativeLuminance = 0.0; // mean(Y_method) / mean(Y_ref) - 1 (bias of the mean)

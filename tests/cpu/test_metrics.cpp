@@ -25,11 +25,26 @@ TEST_CASE("image metrics of constant images have closed forms", "[metrics]")
     ImageErrors e = compareImages(a, b, 1.0);
     // T(1) = 1/2, T(3) = 3/4 (grey: luminance equals the channel value).
     CHECK(e.meanAbsToneMapped == Approx(0.25));
+    CHECK(e.p999AbsToneMapped == Approx(0.25));
     CHECK(e.rmse == Approx(2.0));
     CHECK(e.relativeMSE == Approx(4.0 / 9.01));
     CHECK(e.meanRelativeLuminance == Approx(1.0 / 3.0 - 1.0));
     CHECK(compareImages(b, b, 1.0).rmse == 0.0);
     CHECK_THROWS_AS(compareImages(a, constantImage(3, 4, 1.0f), 1.0), Error);
+}
+
+TEST_CASE("the 99.9th percentile error picks out spikes by nearest rank", "[metrics]")
+{
+    // 2000 pixels: the nearest rank is ceil(0.999 * 2000) = 1998, the third largest error.
+    ImageRGBA32F method = constantImage(50, 40, 1.0f), reference = constantImage(50, 40, 1.0f);
+    auto spike = [&](int pixel) {
+        for (int c = 0; c < 3; ++c) method.pixels[static_cast<std::size_t>(pixel) * 4 + c] = 3.0f;
+    };
+    spike(7);
+    spike(1500);
+    CHECK(compareImages(method, reference, 1.0).p999AbsToneMapped == 0.0); // two spikes lie above the rank
+    spike(42);
+    CHECK(compareImages(method, reference, 1.0).p999AbsToneMapped == Approx(0.25)); // T(3) - T(1)
 }
 
 TEST_CASE("the heat map ramps from black to white", "[metrics]")
