@@ -376,8 +376,12 @@ VPLGI_FUNC vec3 vsglRadianceReceiver(VSGLReceiver r, VSGLight l, float biasAlpha
     vec3 lobeAxis = vec3(l.lobe);
     float lobeSharpness = max(l.lobe.w, 0.0f);
     vec3 lightDiffuse = vec3(l.flux) * vec3(l.diffuse) * kInvPi;
-    vec3 lightSpecular =
-        vec3(l.flux) * fresnelSchlick(vec3(l.specular), clamp(dot(lightNormal, lobeAxis), 0.0f, 1.0f)) * l.specular.w;
+    // F0 = 0 is exactly Lambertian (brdf.h), although Schlick's F(0, cos) is not 0 at grazing angles.
+    vec3 lightF0 = vec3(l.specular);
+    vec3 lightSpecular = lightF0.x + lightF0.y + lightF0.z > 0.0f
+                             ? vec3(l.flux) * fresnelSchlick(lightF0, clamp(dot(lightNormal, lobeAxis), 0.0f, 1.0f)) *
+                                   l.specular.w
+                             : vec3(0.0f);
     bool lightGlossy = lightSpecular.x + lightSpecular.y + lightSpecular.z > 0.0f;
     bool receiverGlossy = r.specular.x + r.specular.y + r.specular.z > 0.0f;
     SGLobe lightLobe = sgNormalised(-lobeAxis, lobeSharpness);
