@@ -60,8 +60,8 @@
 //  d = 0 and r = 0 gives 0.
 #ifndef VPLGI_SHARED_SG_H
 #define VPLGI_SHARED_SG_H
-#include "compat.h"
 #include "brdf.h"
+#include "compat.h"
 #include "vpl.h"
 
 VPLGI_SHARED_BEGIN
@@ -336,10 +336,10 @@ struct VSGLShadingPoint {
 // for every light (vsglRadianceReceiver): the ASG of its specular lobe and the lobe coefficients.
 struct VSGLReceiver {
     VSGLShadingPoint point;
-    ASGLobe lobe;        // f_spec(w) ~= specular * asgEvaluate(lobe, w)
-    vec3 diffuse;        // c'_0 = rho_d / pi (0 when the view is below the horizon)
-    vec3 specular;       // F(F0, n.v) (0 when the view is below the horizon or F0 = 0)
-    float sharpnessSG;   // 2 max(lambda, mu): the lobe's largest sharpness in SG units (MATH 5.4)
+    ASGLobe lobe;      // f_spec(w) ~= specular * asgEvaluate(lobe, w)
+    vec3 diffuse;      // c'_0 = rho_d / pi (0 when the view is below the horizon)
+    vec3 specular;     // F(F0, n.v) (0 when the view is below the horizon or F0 = 0)
+    float sharpnessSG; // 2 max(lambda, mu): the lobe's largest sharpness in SG units (MATH 5.4)
 };
 
 VPLGI_FUNC VSGLReceiver vsglReceiver(VSGLShadingPoint s)
@@ -378,10 +378,10 @@ VPLGI_FUNC vec3 vsglRadianceReceiver(VSGLReceiver r, VSGLight l, float biasAlpha
     vec3 lightDiffuse = vec3(l.flux) * vec3(l.diffuse) * kInvPi;
     // F0 = 0 is exactly Lambertian (brdf.h), although Schlick's F(0, cos) is not 0 at grazing angles.
     vec3 lightF0 = vec3(l.specular);
-    vec3 lightSpecular = lightF0.x + lightF0.y + lightF0.z > 0.0f
-                             ? vec3(l.flux) * fresnelSchlick(lightF0, clamp(dot(lightNormal, lobeAxis), 0.0f, 1.0f)) *
-                                   l.specular.w
-                             : vec3(0.0f);
+    vec3 lightSpecular =
+        lightF0.x + lightF0.y + lightF0.z > 0.0f
+            ? vec3(l.flux) * fresnelSchlick(lightF0, clamp(dot(lightNormal, lobeAxis), 0.0f, 1.0f)) * l.specular.w
+            : vec3(0.0f);
     bool lightGlossy = lightSpecular.x + lightSpecular.y + lightSpecular.z > 0.0f;
     bool receiverGlossy = r.specular.x + r.specular.y + r.specular.z > 0.0f;
     SGLobe lightLobe = sgNormalised(-lobeAxis, lobeSharpness);

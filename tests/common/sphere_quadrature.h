@@ -9,9 +9,9 @@
 namespace vplgi::test {
 
 // Integrates g(w) dw over the sphere, w a glm::dvec3, by the midpoint rule in s with
-// theta = pi s^4 from `axis` (any length; renormalised here): nodes cluster at the axis, where the lobes under test peak
-// (a lobe of width 1e-3 rad still gets ~100 theta nodes with 2000 in all), and phi in [0, 2 pi)
-// uniformly (spectrally accurate for smooth periodic integrands). T is double or glm::dvec3.
+// theta = pi s^4 from `axis` (any length; renormalised here): nodes cluster at the axis, where the lobes under test
+// peak (a lobe of width 1e-3 rad still gets ~100 theta nodes with 2000 in all), and phi in [0, 2 pi) uniformly
+// (spectrally accurate for smooth periodic integrands). T is double or glm::dvec3.
 template <typename T, typename Integrand>
 T integrateSphereAbout(const glm::dvec3& unnormalisedAxis, Integrand g, int thetaNodes, int phiNodes)
 {

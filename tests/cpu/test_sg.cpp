@@ -123,7 +123,8 @@ TEST_CASE("SG product is the pointwise product, also for a huge sharpness next t
     };
     std::vector<Pair> pairs;
     for (int k = 0; k < 200; ++k) {
-        const float etaA = std::pow(10.0f, -3.0f + 7.0f * unit(engine)), etaB = std::pow(10.0f, -3.0f + 7.0f * unit(engine));
+        const float etaA = std::pow(10.0f, -3.0f + 7.0f * unit(engine)),
+                    etaB = std::pow(10.0f, -3.0f + 7.0f * unit(engine));
         const glm::vec3 axisA = randomUnit(engine);
         const glm::vec3 axisB = k % 2 ? randomUnit(engine) : tiltedFrom(axisA, 0.2f * unit(engine));
         pairs.push_back({makeSG(axisA, etaA, 0.5f + unit(engine)), makeSG(axisB, etaB, 0.5f + unit(engine))});
@@ -152,7 +153,8 @@ TEST_CASE("SG product is the pointwise product, also for a huge sharpness next t
             // Logarithms: the values span hundreds of orders of magnitude. Error per unit of the
             // exponents involved: the float axes (6e-8) times the sharpness set the scale.
             const double reference = std::log(double(p.a.amplitude) * double(p.b.amplitude)) +
-                                     p.a.sharpness * (glm::dot(wd, axisA) - 1.0) + p.b.sharpness * (glm::dot(wd, axisB) - 1.0);
+                                     p.a.sharpness * (glm::dot(wd, axisA) - 1.0) +
+                                     p.b.sharpness * (glm::dot(wd, axisB) - 1.0);
             const double got = std::log(double(product.amplitude)) + product.sharpness * (glm::dot(wd, axisP) - 1.0);
             if (!(product.amplitude > 0.0f)) continue; // underflow of a product below 1e-38: nothing to compare
             const double scale = 1.0 + std::abs(reference) + 1e-7 * (double(p.a.sharpness) + p.b.sharpness) * spread;
@@ -170,8 +172,8 @@ TEST_CASE("SG inner product matches quadrature", "[sg][numbers]")
     struct Case {
         float etaA, etaB, angleDegrees;
     };
-    const Case cases[] = {{1.0f, 1.0f, 90.0f},  {10.0f, 100.0f, 5.0f}, {300.0f, 300.0f, 2.0f},  {0.0f, 50.0f, 30.0f},
-                          {1e-3f, 1e-3f, 180.0f}, {20.0f, 20.0f, 180.0f}, {1e4f, 10.0f, 1.0f}, {1e6f, 100.0f, 0.5f}};
+    const Case cases[] = {{1.0f, 1.0f, 90.0f},    {10.0f, 100.0f, 5.0f},  {300.0f, 300.0f, 2.0f}, {0.0f, 50.0f, 30.0f},
+                          {1e-3f, 1e-3f, 180.0f}, {20.0f, 20.0f, 180.0f}, {1e4f, 10.0f, 1.0f},    {1e6f, 100.0f, 0.5f}};
     const glm::vec3 z(0.0f, 0.0f, 1.0f);
     double worst = 0.0;
     for (const Case& c : cases) {
@@ -191,8 +193,7 @@ TEST_CASE("SG inner product matches quadrature", "[sg][numbers]")
     CHECK(worst < 5e-6); // measured 1.9e-6 (float rounding)
 }
 
-TEST_CASE("ASG evaluates its definition and its product integral with an SG matches quadrature",
-          "[sg][numbers]")
+TEST_CASE("ASG evaluates its definition and its product integral with an SG matches quadrature", "[sg][numbers]")
 {
     const glm::vec3 z(0.0f, 0.0f, 1.0f);
     {
@@ -214,20 +215,20 @@ TEST_CASE("ASG evaluates its definition and its product integral with an SG matc
         double tolerance;
     };
     const Case cases[] = {
-        {10.0f, 40.0f, 10.0f, 3.0f, 1e-2},    // measured 4.3e-3
-        {5.0f, 20.0f, 300.0f, 2.0f, 6e-3},    // measured 2.7e-3
-        {200.0f, 800.0f, 10.0f, 1.0f, 3e-4},  // measured 1.3e-4
-        {100.0f, 25.0f, 100.0f, 5.0f, 5e-3},  // measured 1.9e-3
-        {2.0f, 2.0f, 2.0f, 10.0f, 0.2},       // measured 8.8e-2 (too broad for the large-sharpness form)
-        {50.0f, 50.0f, 1e6f, 0.5f, 3e-6},     // measured 1.2e-6 (the cone of a tiny VSL: the ASG at p)
-        {100.0f, 400.0f, 0.0f, 0.0f, 2e-7},   // measured 4.4e-8 (a constant SG: the ASG's integral pi/sqrt(lambda mu))
+        {10.0f, 40.0f, 10.0f, 3.0f, 1e-2},   // measured 4.3e-3
+        {5.0f, 20.0f, 300.0f, 2.0f, 6e-3},   // measured 2.7e-3
+        {200.0f, 800.0f, 10.0f, 1.0f, 3e-4}, // measured 1.3e-4
+        {100.0f, 25.0f, 100.0f, 5.0f, 5e-3}, // measured 1.9e-3
+        {2.0f, 2.0f, 2.0f, 10.0f, 0.2},      // measured 8.8e-2 (too broad for the large-sharpness form)
+        {50.0f, 50.0f, 1e6f, 0.5f, 3e-6},    // measured 1.2e-6 (the cone of a tiny VSL: the ASG at p)
+        {100.0f, 400.0f, 0.0f, 0.0f, 2e-7},  // measured 4.4e-8 (a constant SG: the ASG's integral pi/sqrt(lambda mu))
     };
     double worst = 0.0;
     for (const Case& c : cases) {
         const ASGLobe asg = makeASG(z, c.lambda, c.mu, 1.5f);
         // The SG tilted off the axis between x and y, so that both bandwidths matter.
-        const glm::vec3 p =
-            glm::normalize(std::cos(degrees(c.offsetDegrees)) * z + std::sin(degrees(c.offsetDegrees)) * glm::normalize(asg.x + 0.5f * asg.y));
+        const glm::vec3 p = glm::normalize(std::cos(degrees(c.offsetDegrees)) * z +
+                                           std::sin(degrees(c.offsetDegrees)) * glm::normalize(asg.x + 0.5f * asg.y));
         const SGLobe sg = makeSG(p, c.nu, 1.0f / sgIntegral(c.nu));
         const glm::vec3 axis = c.nu > 2.0f * std::max(c.lambda, c.mu) ? p : z;
         const double quadrature = integrateSphereAbout<double>(
@@ -263,7 +264,7 @@ TEST_CASE("cone SG: cancellation-free solid angle, sharpness and the integral of
         }
     }
     MEASURED("cone: worst relative error of Omega/(pi r^2) in float " << worstForm);
-    CHECK(worstForm < 3e-7); // measured 1.0e-7
+    CHECK(worstForm < 3e-7);                          // measured 1.0e-7
     CHECK(coneSharpness(0.0f, 0.25f) == Approx(2.0)); // d = 0: a hemisphere, 4 pi / 2 pi
     CHECK(coneSharpness(1.0f, 0.0f) == kConeMaxSharpness);
 
@@ -298,12 +299,15 @@ TEST_CASE("triple product ASG x SG x cone SG matches quadrature (MATH 4.10), wit
                 const glm::vec3 coneAxis = glm::normalize(tiltedFrom(z, degrees(2.0f)) + 0.01f * asg.y);
                 const float r = std::tan(degrees(coneDegrees));
                 const SGLobe cone = sgNormalised(coneAxis, coneSharpness(1.0f, r * r));
-                const SGLobe light = sgNormalised(glm::normalize(tiltedFrom(z, degrees(3.0f)) - 0.02f * asg.x), etaLight);
+                const SGLobe light =
+                    sgNormalised(glm::normalize(tiltedFrom(z, degrees(3.0f)) - 0.02f * asg.x), etaLight);
                 const double shared = asgSGProductIntegral(asg, sgProduct(light, cone));
                 const glm::vec3 axis = cone.sharpness > 2.0f * bandwidths.y ? coneAxis : z;
                 const double quadrature = integrateSphereAbout<double>(
                     toDouble(axis),
-                    [&](const glm::dvec3& w) { return asgReference(asg, w) * sgReference(light, w) * sgReference(cone, w); },
+                    [&](const glm::dvec3& w) {
+                        return asgReference(asg, w) * sgReference(light, w) * sgReference(cone, w);
+                    },
                     4000, 512);
                 const double error = std::abs(shared / quadrature - 1.0);
                 INFO("ASG (" << bandwidths.x << ", " << bandwidths.y << "), light eta " << etaLight << ", cone "
@@ -314,7 +318,8 @@ TEST_CASE("triple product ASG x SG x cone SG matches quadrature (MATH 4.10), wit
             }
         }
     }
-    MEASURED("triple product ASG x SG x cone SG: worst relative error vs quadrature over " << count << " cases: " << worst);
+    MEASURED("triple product ASG x SG x cone SG: worst relative error vs quadrature over " << count
+                                                                                           << " cases: " << worst);
     // Measured worst 1.15e-2 (MATH 4.10 saw 3e-5 .. 1e-2 for these lobes); the CHECK in the loop
     // allows 3e-2.
 
@@ -327,8 +332,8 @@ TEST_CASE("triple product ASG x SG x cone SG matches quadrature (MATH 4.10), wit
     // Both diffuse: T = int G_V; the cone's 2 G_V integrates to Omega (1 - e^{-8 pi/Omega}).
     const double bothDiffuse = 2.0 * sgIntegral(coneSharpness(1.0f, 0.01f));
     const double omega = coneSolidAngle(1.0f, 0.01f);
-    MEASURED("triple product, shading point diffuse: relative error " << diffuseError
-             << "; both diffuse: int 2 G_V / Omega - 1 = " << bothDiffuse / omega - 1.0);
+    MEASURED("triple product, shading point diffuse: relative error "
+             << diffuseError << "; both diffuse: int 2 G_V / Omega - 1 = " << bothDiffuse / omega - 1.0);
     CHECK(diffuseError < 1e-7);                        // measured 3.3e-8
     CHECK(std::abs(bothDiffuse / omega - 1.0) < 2e-7); // measured 6.0e-8 (e^{-8 pi/Omega} ~ 0 for this 5.7 deg cone)
 }
@@ -378,13 +383,14 @@ struct LobeProduct {
         lightDiffuse = glm::dvec3(glm::vec3(l.flux) * glm::vec3(l.diffuse)) / kPiD;
         const glm::vec3 f0(l.specular);
         lightSpecular = f0.x + f0.y + f0.z > 0.0f
-                            ? glm::dvec3(glm::vec3(l.flux) * fresnelSchlick(f0, glm::clamp(glm::dot(n, axis), 0.0f, 1.0f)) *
-                                         l.specular.w)
+                            ? glm::dvec3(glm::vec3(l.flux) *
+                                         fresnelSchlick(f0, glm::clamp(glm::dot(n, axis), 0.0f, 1.0f)) * l.specular.w)
                             : glm::dvec3(0.0);
     }
     glm::dvec3 operator()(const glm::dvec3& w) const
     {
-        const glm::dvec3 atReceiver = glm::dvec3(receiver.diffuse) + glm::dvec3(receiver.specular) * asgReference(receiver.lobe, w);
+        const glm::dvec3 atReceiver =
+            glm::dvec3(receiver.diffuse) + glm::dvec3(receiver.specular) * asgReference(receiver.lobe, w);
         const glm::dvec3 atLight = lightDiffuse + lightSpecular * sgReference(light, w);
         return atReceiver * atLight;
     }
@@ -426,8 +432,9 @@ TEST_CASE("vsglRadiance is eq. (2) with the SG integrand of eq. (3): against qua
         const glm::vec3 out = glm::normalize(-towards + 0.2f * randomUnit(engine));
         glm::vec3 incoming = glm::normalize(2.0f * glm::dot(lightNormal, out) * lightNormal - out);
         if (glm::dot(incoming, lightNormal) <= 0.05f) incoming = lightNormal;
-        const VSGLight l = makeLight(d * towards, r * r, lightNormal, glm::vec3(2.0f, 1.0f, 0.5f), glm::vec3(0.6f, 0.5f, 0.4f),
-                                     glm::vec3(0.3f, 0.6f, 0.9f), 0.3f + 0.5f * unit(engine), incoming);
+        const VSGLight l =
+            makeLight(d * towards, r * r, lightNormal, glm::vec3(2.0f, 1.0f, 0.5f), glm::vec3(0.6f, 0.5f, 0.4f),
+                      glm::vec3(0.3f, 0.6f, 0.9f), 0.3f + 0.5f * unit(engine), incoming);
         float cancelled = -1.0f;
         const glm::dvec3 shared = glm::dvec3(vsglRadiance(s, l, 0.0f, cancelled));
         CHECK(cancelled == 0.0f);
@@ -440,8 +447,8 @@ TEST_CASE("vsglRadiance is eq. (2) with the SG integrand of eq. (3): against qua
             toDouble(w), [&](const glm::dvec3& u) { return product(u) * sgReference(cone, u); }, 2000, 256);
         const glm::dvec3 expected = integral * cosines / (kPiD * double(r) * r);
         const double error = worstChannelError(shared, expected);
-        INFO("case " << k << ": expected " << expected.r << " " << expected.g << " " << expected.b << ", got " << shared.r
-                     << " " << shared.g << " " << shared.b);
+        INFO("case " << k << ": expected " << expected.r << " " << expected.g << " " << expected.b << ", got "
+                     << shared.r << " " << shared.g << " " << shared.b);
         CHECK(error < 0.04);
         worst = std::max(worst, error);
     }
@@ -458,9 +465,9 @@ TEST_CASE("vsglRadiance of a diffuse light on a diffuse receiver is the closed f
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
     double worst = 0.0, worstCancelled = 0.0;
     for (int k = 0; k < 400; ++k) {
-        const VSGLShadingPoint s = makePoint(glm::vec3(unit(engine), unit(engine), 0.0f), n,
-                                             glm::normalize(glm::vec3(unit(engine), 0.0f, 1.0f)),
-                                             glm::vec3(unit(engine), unit(engine), unit(engine)), glm::vec3(0.0f), unit(engine));
+        const VSGLShadingPoint s = makePoint(
+            glm::vec3(unit(engine), unit(engine), 0.0f), n, glm::normalize(glm::vec3(unit(engine), 0.0f, 1.0f)),
+            glm::vec3(unit(engine), unit(engine), unit(engine)), glm::vec3(0.0f), unit(engine));
         glm::vec3 towards = randomUnit(engine);
         towards.z = std::abs(towards.z) + 0.05f;
         towards = glm::normalize(towards);
@@ -468,15 +475,16 @@ TEST_CASE("vsglRadiance of a diffuse light on a diffuse receiver is the closed f
         const float ratio = std::pow(10.0f, -4.0f + 5.0f * unit(engine)); // r/d from 1e-4 to 10
         const float r2 = d > 0.0f ? ratio * ratio * d * d : 0.01f;
         const glm::vec3 lightNormal = glm::normalize(-towards + 0.6f * randomUnit(engine));
-        const VSGLight l = makeLight(s.position + d * towards, r2, lightNormal, glm::vec3(1.0f, 2.0f, 3.0f),
-                                     glm::vec3(unit(engine), unit(engine), unit(engine)), glm::vec3(0.0f), 0.5f, lightNormal);
+        const VSGLight l =
+            makeLight(s.position + d * towards, r2, lightNormal, glm::vec3(1.0f, 2.0f, 3.0f),
+                      glm::vec3(unit(engine), unit(engine), unit(engine)), glm::vec3(0.0f), 0.5f, lightNormal);
         const glm::vec3 w = d > 0.0f ? glm::normalize(glm::vec3(l.positionRadius2) - s.position) : n;
         const double cosines = std::max(0.0f, glm::dot(w, n)) * std::max(0.0f, -glm::dot(w, lightNormal));
         const double dd = glm::length(glm::dvec3(glm::vec3(l.positionRadius2)) - glm::dvec3(s.position));
         const double sd = std::sqrt(dd * dd + r2), omegaOverArea = 2.0 / (sd * (sd + dd));
         const double omega = kPiD * r2 * omegaOverArea;
-        const glm::dvec3 exact = glm::dvec3(s.diffuse) / kPiD * glm::dvec3(glm::vec3(l.flux) * glm::vec3(l.diffuse)) / kPiD *
-                                 cosines * omegaOverArea;
+        const glm::dvec3 exact = glm::dvec3(s.diffuse) / kPiD * glm::dvec3(glm::vec3(l.flux) * glm::vec3(l.diffuse)) /
+                                 kPiD * cosines * omegaOverArea;
         float cancelled = -1.0f;
         const glm::dvec3 sg = glm::dvec3(vsglRadiance(s, l, 0.0f, cancelled));
         CHECK(cancelled == 0.0f);
@@ -490,7 +498,7 @@ TEST_CASE("vsglRadiance of a diffuse light on a diffuse receiver is the closed f
         worstCancelled = std::max(worstCancelled, worstChannelError(reduced, exact));
     }
     MEASURED("diffuse-diffuse VSGL vs closed form: worst relative error " << worst << " (SG), " << worstCancelled
-                                                                           << " (bias reduction)");
+                                                                          << " (bias reduction)");
     CHECK(worst < 1e-6);          // measured 4.4e-7: float rounding (d from 1e-3 to 10, r/d from 1e-4 to 10)
     CHECK(worstCancelled < 1e-6); // measured 4.4e-7
 }
@@ -534,12 +542,13 @@ TEST_CASE("bias reduction: the cancelled VSGL is eq. (1) as r -> 0, and only smo
             continue;
         }
         const double error = worstChannelError(reduced, point);
-        (glossyLight ? worstGlossyLight : worstDiffuseLight) = std::max(glossyLight ? worstGlossyLight : worstDiffuseLight, error);
+        (glossyLight ? worstGlossyLight : worstDiffuseLight) =
+            std::max(glossyLight ? worstGlossyLight : worstDiffuseLight, error);
     }
-    MEASURED("bias reduction at r/d = 1e-3 vs eq. (1) (vplRadiance): worst relative error " << worstDiffuseLight
-             << " (diffuse lights), " << worstGlossyLight << " (glossy lights: the light's SG lobe vs its exact GGX); "
-             << cancelledCount << " of 200 cancelled");
-    CHECK(cancelledCount == 200); // eta_V = 4e6 here: alpha eta_V = 4000 exceeds every lobe's sharpness
+    MEASURED("bias reduction at r/d = 1e-3 vs eq. (1) (vplRadiance): worst relative error "
+             << worstDiffuseLight << " (diffuse lights), " << worstGlossyLight
+             << " (glossy lights: the light's SG lobe vs its exact GGX); " << cancelledCount << " of 200 cancelled");
+    CHECK(cancelledCount == 200);    // eta_V = 4e6 here: alpha eta_V = 4000 exceeds every lobe's sharpness
     CHECK(worstDiffuseLight < 5e-6); // measured 2.1e-6: float rounding and 2 d^2/(s(s+d)) - 1 = -7.5e-7
     // Measured 6.4e-6: at the lobe's axis the SG fit equals GGX (D(n) = 1/(pi alpha^2), V and F taken
     // there); a lobe aimed the wrong way (axis sign) would miss by orders of magnitude.
@@ -549,19 +558,22 @@ TEST_CASE("bias reduction: the cancelled VSGL is eq. (1) as r -> 0, and only smo
     const VSGLShadingPoint sharp = makePoint(glm::vec3(0.0f), n, glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f)),
                                              glm::vec3(0.2f), glm::vec3(0.9f), 0.1f);
     const glm::vec3 towards = glm::normalize(glm::vec3(-0.3f, 0.0f, 1.0f));
-    const VSGLight wide = makeLight(towards, 0.1f, -towards, glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.0f), 0.5f, -towards);
+    const VSGLight wide =
+        makeLight(towards, 0.1f, -towards, glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.0f), 0.5f, -towards);
     float cancelled = -1.0f;
     vsglRadiance(sharp, wide, 1e-3f, cancelled);
     CHECK(cancelled == 0.0f);
     vsglRadiance(sharp, wide, 1e6f, cancelled);
     CHECK(cancelled == 1.0f);
-    const VSGLight tiny = makeLight(towards, 1e-12f, -towards, glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.0f), 0.5f, -towards);
+    const VSGLight tiny =
+        makeLight(towards, 1e-12f, -towards, glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.0f), 0.5f, -towards);
     vsglRadiance(sharp, tiny, 0.0f, cancelled);
     CHECK(cancelled == 0.0f);
 }
 
-TEST_CASE("as r -> 0 without bias reduction the VSGL tends to its lobes at w_i over d^2, and to eq. (1) for smooth lobes",
-          "[sg][vsgl][numbers]")
+TEST_CASE(
+    "as r -> 0 without bias reduction the VSGL tends to its lobes at w_i over d^2, and to eq. (1) for smooth lobes",
+    "[sg][vsgl][numbers]")
 {
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
     const glm::vec3 view = glm::normalize(glm::vec3(0.5f, 0.0f, 1.0f));
@@ -575,8 +587,8 @@ TEST_CASE("as r -> 0 without bias reduction the VSGL tends to its lobes at w_i o
         const VSGLShadingPoint s = makePoint(glm::vec3(0.0f), n, view, glm::vec3(0.5f), glm::vec3(0.5f), roughness);
         previous = 1e30;
         for (float ratio : {1e-1f, 1e-2f, 1e-3f, 1e-4f}) {
-            const VSGLight l = makeLight(d * towards, ratio * ratio * d * d, lightNormal, glm::vec3(1.0f), glm::vec3(0.5f),
-                                         glm::vec3(0.5f), roughness, toPrimary);
+            const VSGLight l = makeLight(d * towards, ratio * ratio * d * d, lightNormal, glm::vec3(1.0f),
+                                         glm::vec3(0.5f), glm::vec3(0.5f), roughness, toPrimary);
             float cancelled = -1.0f;
             const glm::dvec3 sg = glm::dvec3(vsglRadiance(s, l, 0.0f, cancelled));
             const LobeProduct product(s, l);
@@ -593,21 +605,21 @@ TEST_CASE("as r -> 0 without bias reduction the VSGL tends to its lobes at w_i o
             }
         }
     }
-    MEASURED("r/d = 1e-4, no bias reduction: relative distance to the SG lobes at w_i / d^2 " << limitError
-             << ", to eq. (1) with exact GGX (roughness 0.5 and 0.7 at both ends) " << pointError);
+    MEASURED("r/d = 1e-4, no bias reduction: relative distance to the SG lobes at w_i / d^2 "
+             << limitError << ", to eq. (1) with exact GGX (roughness 0.5 and 0.7 at both ends) " << pointError);
     CHECK(limitError < 4e-7); // measured 1.3e-7
     CHECK(pointError < 0.18); // measured 7.2e-2: the SG fits of GGX at both ends, pointwise
 }
 
-TEST_CASE("degenerate inputs give finite radiance: zero normals, zero flux, r = 0, d = 0, invalid lights",
-          "[sg][vsgl]")
+TEST_CASE("degenerate inputs give finite radiance: zero normals, zero flux, r = 0, d = 0, invalid lights", "[sg][vsgl]")
 {
     const glm::vec3 n(0.0f, 0.0f, 1.0f), zero(0.0f);
-    const VSGLShadingPoint s = makePoint(zero, n, glm::normalize(glm::vec3(0.2f, 0.0f, 1.0f)), glm::vec3(0.5f),
-                                         glm::vec3(0.5f), 0.4f);
+    const VSGLShadingPoint s =
+        makePoint(zero, n, glm::normalize(glm::vec3(0.2f, 0.0f, 1.0f)), glm::vec3(0.5f), glm::vec3(0.5f), 0.4f);
     const VSGLight base = makeLight(glm::vec3(0.0f, 0.0f, 1.0f), 0.01f, -n, glm::vec3(1.0f), glm::vec3(0.5f),
                                     glm::vec3(0.5f), 0.4f, glm::normalize(glm::vec3(0.1f, 0.2f, -1.0f)));
-    auto both = [&](const VSGLShadingPoint& point, const VSGLight& light, glm::vec3& sg, glm::vec3& reduced, glm::vec3& vpl) {
+    auto both = [&](const VSGLShadingPoint& point, const VSGLight& light, glm::vec3& sg, glm::vec3& reduced,
+                    glm::vec3& vpl) {
         float cancelled = 0.0f;
         sg = vsglRadiance(point, light, 0.0f, cancelled);
         reduced = vsglRadiance(point, light, 1e-3f, cancelled);
@@ -737,7 +749,7 @@ TEST_CASE("VSGL mip level h = 1/2 log2(k / (N P_j)) (MATH 5.2), clamped", "[sg]"
     CHECK(vsglMipLevel(1024.0f, 4.0f * uniform, 4.0f, 9) == Approx(3.0f));
     CHECK(vsglMipLevel(1024.0f, 0.25f * uniform, 4.0f, 9) == Approx(5.0f));
     CHECK(vsglMipLevel(1024.0f, 2.0f * uniform, 4.0f, 9) == Approx(3.5f));
-    CHECK(vsglMipLevel(1024.0f, 1.0f, 4.0f, 9) == 0.0f);  // a certain texel: no filtering
+    CHECK(vsglMipLevel(1024.0f, 1.0f, 4.0f, 9) == 0.0f);   // a certain texel: no filtering
     CHECK(vsglMipLevel(1024.0f, 1e-12f, 4.0f, 9) == 8.0f); // held at the top level (one texel)
     CHECK(vsglMipLevel(1024.0f, 0.0f, 4.0f, 9) == 8.0f);
     CHECK(vsglMipLevel(0.0f, uniform, 4.0f, 9) == 8.0f);
@@ -837,7 +849,9 @@ TEST_CASE("GGX to SG fit: NDF and specular-lobe errors per roughness and view", 
             };
             auto approximation = [&](int k, const glm::dvec3& w) { // k: 0, 1 SG warp A, B; 2, 3 ASG warp A, B
                 if (w.z <= 0.0) return 0.0;
-                return (k < 2 ? sgLobes[k].integral * sgReference(normalised[k], w) : asgReference(asgLobes[k - 2], w)) * w.z;
+                return (k < 2 ? sgLobes[k].integral * sgReference(normalised[k], w)
+                              : asgReference(asgLobes[k - 2], w)) *
+                       w.z;
             };
             const glm::dvec3 mirror = toDouble(sgLobes[1].axis);
             FitSums sums[4];
@@ -854,9 +868,10 @@ TEST_CASE("GGX to SG fit: NDF and specular-lobe errors per roughness and view", 
             FitError e[4];
             for (int k = 0; k < 4; ++k)
                 e[k] = sums[k].error();
-            MEASURED("GGX lobe f cos | " << roughness << " | " << viewDegrees << " | " << e[0].integral << ", " << e[0].l2
-                                         << " | " << e[1].integral << ", " << e[1].l2 << " | " << e[2].integral << ", "
-                                         << e[2].l2 << " | " << e[3].integral << ", " << e[3].l2);
+            MEASURED("GGX lobe f cos | " << roughness << " | " << viewDegrees << " | " << e[0].integral << ", "
+                                         << e[0].l2 << " | " << e[1].integral << ", " << e[1].l2 << " | "
+                                         << e[2].integral << ", " << e[2].l2 << " | " << e[3].integral << ", "
+                                         << e[3].l2);
             scoreA += std::abs(e[0].integral) + e[0].l2 + std::abs(e[2].integral) + e[2].l2;
             scoreB += std::abs(e[1].integral) + e[1].l2 + std::abs(e[3].integral) + e[3].l2;
             worstSGB = std::max({worstSGB, std::abs(e[1].integral), e[1].l2});
@@ -864,9 +879,9 @@ TEST_CASE("GGX to SG fit: NDF and specular-lobe errors per roughness and view", 
             worstASGIntegralB = std::max(worstASGIntegralB, std::abs(e[3].integral));
         }
     }
-    MEASURED("GGX to SG fit: summed |integral error| + L2 over all rows: A (2/alpha^2) " << scoreA
-             << ", B (2/alpha^2 - 2) " << scoreB << "; worst of B: NDF " << worstNDFB << ", SG warp " << worstSGB
-             << ", ASG warp L2 " << worstASGB << ", ASG warp integral " << worstASGIntegralB);
+    MEASURED("GGX to SG fit: summed |integral error| + L2 over all rows: A (2/alpha^2) "
+             << scoreA << ", B (2/alpha^2 - 2) " << scoreB << "; worst of B: NDF " << worstNDFB << ", SG warp "
+             << worstSGB << ", ASG warp L2 " << worstASGB << ", ASG warp integral " << worstASGIntegralB);
     CHECK(chosenMatchesB == 9); // ggxNDFSharpness is mapping B ...
     CHECK(scoreB < scoreA);     // ... because it measures better
     // Measured worst of mapping B over the table: 0.28 (NDF L2; the Gaussian has no GGX tail), 0.47

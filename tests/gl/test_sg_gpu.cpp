@@ -109,14 +109,29 @@ std::vector<Case> makeCases()
         // Degenerate inputs every so often (test_sg.cpp has their values): r = 0, d = 0, empty slot,
         // zero normals, zero flux.
         switch (i % 37) {
-        case 1: c.light.positionRadius2.w = 0.0f; break;
-        case 2: c.light.positionRadius2 = glm::vec4(position, 0.01f); break;
-        case 3: c.light.positionRadius2 = glm::vec4(position, 0.0f); break;
-        case 4: c.light.normalValid.w = 0.0f; break;
-        case 5: c.normal = glm::vec4(0.0f); break;
-        case 6: c.light.normalValid = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f); break;
-        case 7: c.light.flux = glm::vec4(0.0f); break;
-        default: break;
+        case 1:
+            c.light.positionRadius2.w = 0.0f;
+            break;
+        case 2:
+            c.light.positionRadius2 = glm::vec4(position, 0.01f);
+            break;
+        case 3:
+            c.light.positionRadius2 = glm::vec4(position, 0.0f);
+            break;
+        case 4:
+            c.light.normalValid.w = 0.0f;
+            break;
+        case 5:
+            c.normal = glm::vec4(0.0f);
+            break;
+        case 6:
+            c.light.normalValid = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+            break;
+        case 7:
+            c.light.flux = glm::vec4(0.0f);
+            break;
+        default:
+            break;
         }
         cases.push_back(c);
     }
