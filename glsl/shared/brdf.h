@@ -44,21 +44,29 @@ VPLGI_FUNC vec3 fresnelSchlick(vec3 f0, float VoH)
     return f0 + (vec3(1.0f) - f0) * (m2 * m2 * m);
 }
 
-// BRDF value f_r(n, v, l) [1/sr]; v and l point away from the surface. Zero below the horizon.
-VPLGI_FUNC vec3 evaluateBRDF(SurfaceMaterial m, vec3 n, vec3 v, vec3 l)
+// BRDF value [1/sr] of the glTF model given by its coefficients: diffuse reflectance rho_d (the
+// Lambert lobe is rho_d / pi), F0 and perceptual roughness; v and l point away from the surface.
+// Zero below the horizon. The VSGL lights carry these coefficients (glsl/shared/sg.h), not a material.
+VPLGI_FUNC vec3 evaluateBRDFCoefficients(vec3 diffuse, vec3 f0, float roughness, vec3 n, vec3 v, vec3 l)
 {
     float NoL = dot(n, l);
     float NoV = dot(n, v);
     if (NoL <= 0.0f || NoV <= 0.0f) return vec3(0.0f);
-    vec3 diffuse = (1.0f - m.metallic) * m.baseColor * kInvPi;
-    vec3 f0 = mix(vec3(0.04f * m.specular), m.baseColor, m.metallic);
-    if (f0.x + f0.y + f0.z <= 0.0f) return diffuse;
+    vec3 lambert = diffuse * kInvPi;
+    if (f0.x + f0.y + f0.z <= 0.0f) return lambert;
     vec3 h = normalize(v + l);
-    float alpha = max(m.roughness * m.roughness, kMinAlpha);
+    float alpha = max(roughness * roughness, kMinAlpha);
     float D = distributionGGX(clamp(dot(n, h), 0.0f, 1.0f), alpha);
     float V = visibilitySmithGGX(NoV, NoL, alpha);
     vec3 F = fresnelSchlick(f0, clamp(dot(v, h), 0.0f, 1.0f));
-    return diffuse + D * V * F;
+    return lambert + D * V * F;
+}
+
+// BRDF value f_r(n, v, l) [1/sr] of a material; v and l point away from the surface. Zero below the horizon.
+VPLGI_FUNC vec3 evaluateBRDF(SurfaceMaterial m, vec3 n, vec3 v, vec3 l)
+{
+    vec3 f0 = mix(vec3(0.04f * m.specular), m.baseColor, m.metallic);
+    return evaluateBRDFCoefficients((1.0f - m.metallic) * m.baseColor, f0, m.roughness, n, v, l);
 }
 
 VPLGI_SHARED_END
