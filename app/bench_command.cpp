@@ -111,23 +111,82 @@ std::string jsonOf(const BenchResult& r)
     return s.str();
 }
 
-// Per-pass medians of two runs side by side with their ratio b / a (passes of either run).
+// A pass name with the technique's own name replaced by "<technique>", so that two techniques'
+// scopes of the same name ("vsgl / RSMs", "vpl-brsm / RSMs") share a row.
+std::string passKey(const std::string& name, const std::string& technique)
+{
+    if (name == technique) return "<technique>";
+    const std::string prefix = technique + " / ";
+    if (name.rfind(prefix, 0) == 0) return "<technique> / " + name.substr(prefix.size());
+    return name;
+}
+
+double medianOfKey(const BenchResult& r, const std::string& key)
+{
+    for (const auto& [name, stats] : r.passes)
+        if (passKey(name, r.technique) == key) return stats.median();
+    return 0.0;
+}
+
+// Per-pass medians of two runs side by side with their ratio b / a (passes of either run; a
+// technique's own scopes are matched by what follows its name).
 void printRatioTable(const BenchResult& a, const BenchResult& b, const std::string& bSuffix)
 {
     const std::string bName = b.technique + bSuffix;
     std::printf("| pass | %s ms | %s ms | ratio %s / %s |\n|---|---|---|---|\n", a.technique.c_str(), bName.c_str(),
                 bName.c_str(), a.technique.c_str());
-    std::vector<std::string> order = a.order;
-    for (const std::string& n : b.order)
-        if (std::find(order.begin(), order.end(), n) == order.end()) order.push_back(n);
-    for (const std::string& n : order) {
-        double ma = a.passes.count(n) ? a.passes.at(n).median() : 0.0;
-        double mb = b.passes.count(n) ? b.passes.at(n).median() : 0.0;
-        std::printf("| %s | %s | %s | %s |\n", n.c_str(), formatNumber(ma).c_str(), formatNumber(mb).c_str(),
+    std::vector<std::string> order;
+    for (const BenchResult* r : {&a, &b})
+        for (const std::string& n : r->order) {
+            const std::string key = passKey(n, r->technique);
+            if (std::find(order.begin(), order.end(), key) == order.end()) order.push_back(key);
+        }
+    for (const std::string& key : order) {
+        const double ma = medianOfKey(a, key);
+        const double mb = medianOfKey(b, key);
+        std::printf("| %s | %s | %s | %s |\n", key.c_str(), formatNumber(ma).c_str(), formatNumber(mb).c_str(),
                     ma > 0.0 ? formatNumber(mb / ma, 3).c_str() : "-");
     }
     std::printf("| **total** | %s | %s | %s |\n\n", formatNumber(a.total.median()).c_str(),
                 formatNumber(b.total.median()).c_str(), formatNumber(b.total.median() / a.total.median(), 3).c_str());
+}
+
+// VSGL Table 1's rows for the RSM techniques (vsgl, vpl-brsm: those that time "<t> / radiance
+// estimation"), one column per run, and the ratio of the last run to the first when there are two.
+void printRSMTable(const std::vector<BenchResult>& results, const std::vector<std::string>& labels)
+{
+    std::vector<std::size_t> runs;
+    for (std::size_t i = 0; i < results.size(); ++i)
+        if (medianOfKey(results[i], "<technique> / radiance estimation") > 0.0) runs.push_back(i);
+    if (runs.empty()) return;
+    std::printf("| pass (VSGL Table 1 rows) |");
+    for (std::size_t i : runs) std::printf(" %s ms |", labels[i].c_str());
+    if (runs.size() == 2) std::printf(" ratio %s / %s |", labels[runs[0]].c_str(), labels[runs[1]].c_str());
+    std::printf("\n|---|");
+    for (std::size_t k = 0; k < runs.size() + (runs.size() == 2 ? 1 : 0); ++k) std::printf("---|");
+    std::printf("\n");
+    // The paper's rows.
+    const std::vector<std::pair<std::string, std::vector<std::string>>> rows = {
+        {"G-buffer", {"gbuffer"}},
+        {"RSMs", {"<technique> / RSMs"}},
+        {"PDF of BRSMs", {"<technique> / PDF of BRSMs"}},
+        {"VPL/VSGL generation", {"<technique> / VPL/VSGL generation"}},
+        {"shadow maps", {"<technique> / shadow maps"}},
+        {"radiance estimation", {"<technique> / radiance estimation"}},
+        {"**total frame**", {}}};
+    for (const auto& [label, keys] : rows) {
+        std::vector<double> values;
+        for (std::size_t i : runs) {
+            double v = keys.empty() ? results[i].total.median() : 0.0;
+            for (const std::string& key : keys) v += medianOfKey(results[i], key);
+            values.push_back(v);
+        }
+        std::printf("| %s |", label.c_str());
+        for (double v : values) std::printf(" %s |", formatNumber(v).c_str());
+        if (values.size() == 2) std::printf(" %s |", values[1] > 0.0 ? formatNumber(values[0] / values[1], 3).c_str() : "-");
+        std::printf("\n");
+    }
+    std::printf("\n");
 }
 
 // Ray efficiency of CPU stages that report their rays: the very rays the stage cast in a frame,
@@ -252,6 +311,7 @@ int runBench(const std::vector<std::string>& args)
     for (std::size_t i = 0; i < results.size(); ++i)
         labels.push_back(results[i].technique + (i == 1 && parser.has("against-set") ? " (against-set)" : ""));
     printVPLTable(results, labels);
+    printRSMTable(results, labels);
     std::string efficiencyJson = rayEfficiency(results);
     if (!efficiencyJson.empty()) efficiencyJson = ", \"rayEfficiency\": [" + efficiencyJson + "]";
     std::string json = "{\"scene\": \"" + sessions.front()->scene().source +

@@ -37,16 +37,44 @@ float texelFactor(const glm::mat4& clipFromView, int size)
 
 } // namespace
 
-RSMPass::RSMPass(const gl::ShaderLoader& shaders)
-    : mProgram(loadProgram(shaders)), mDownsample(shaders, "rsm downsample", "passes/rsm_downsample.comp")
+gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth)
 {
     gl::RenderTargetDesc desc;
     desc.colorFormats.assign(shared::kRSMAttachmentCount, GL_RGBA32F);
     desc.colorNames = {"position", "normal", "flux", "diffuse", "specular", "lobe"};
-    desc.depthFormat = GL_DEPTH_COMPONENT32F;
+    desc.depthFormat = withDepth ? GL_DEPTH_COMPONENT32F : GL_NONE;
     desc.textureTarget = GL_TEXTURE_2D_ARRAY;
     desc.levels = 0;
-    mTarget = gl::RenderTarget("rsm", desc);
+    return gl::RenderTarget(name, desc);
+}
+
+void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& target, gl::PassTimer* timer)
+{
+    const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(std::max(1, target.width()))) + 0.5);
+    const int layers = target.color(0).desc().layers;
+    for (int level = 1; level < levels; ++level) {
+        const int size = std::max(1, target.width() >> level);
+        // Level l through texelFetch (no sampler object: texelFetch ignores filtering), level l+1 as
+        // images; different levels of one texture are different memory.
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+            glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), target.color(a).id());
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+            bindImage(shared::kImageRSMTarget + a, target.color(a), GL_WRITE_ONLY, level);
+        }
+        glProgramUniform2i(kernel.program().id(), kernel.program().uniformLocation("uTargetSize"), size, size);
+        kernel.program().set("uSourceLevel", level - 1);
+        // The next level reads this one with texelFetch; after the last, consumers sample the mips,
+        // read them back or load them as images.
+        const NextRead next = level + 1 < levels ? NextRead::TextureFetch
+                                                 : NextRead::TextureFetch | NextRead::TextureReadback | NextRead::Image;
+        kernel.dispatch(glm::ivec3(size, size, layers), next, timer);
+    }
+}
+
+RSMPass::RSMPass(const gl::ShaderLoader& shaders)
+    : mProgram(loadProgram(shaders)), mDownsample(shaders, "rsm downsample", "passes/rsm_downsample.comp"),
+      mTarget(makeRSMLayoutTarget("rsm", true))
+{
 }
 
 void RSMPass::reloadShaders(const gl::ShaderLoader& shaders)
@@ -113,11 +141,20 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
     return views;
 }
 
-void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params)
+void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params,
+                     gl::PassTimer* timer)
 {
     require(isPowerOfTwo(params.size), "rsm.size must be a power of two, not " + std::to_string(params.size));
     mViews = makeViews(scene.scene().worldBounds(), lights, params.size);
     if (mViews.empty()) return;
+    std::vector<shared::RSMLayerLight> layerLights;
+    for (const RSMView& view : mViews) {
+        const glm::vec3 where = view.kind == shared::kRSMLightDirectional
+                                    ? glm::vec3(lights.directionals[static_cast<std::size_t>(view.emitter)].direction)
+                                    : glm::vec3(lights.points[static_cast<std::size_t>(view.emitter)].positionProfile);
+        layerLights.push_back({glm::vec4(where, static_cast<float>(view.kind))});
+    }
+    gl::uploadVector(mLayerLights, "rsm layer lights", layerLights);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "rsm");
     mTarget.resize(params.size, params.size, layerCount());
     mLevels = 1 + static_cast<int>(std::log2(static_cast<double>(params.size)) + 0.5);
@@ -152,31 +189,13 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    downsample();
+    downsample(timer);
     glPopDebugGroup();
 }
 
-void RSMPass::downsample()
+void RSMPass::downsample(gl::PassTimer* timer)
 {
-    for (int level = 1; level < mLevels; ++level) {
-        const int size = std::max(1, mTarget.width() >> level);
-        // Level l through texelFetch (no sampler object: texelFetch ignores filtering), level l+1 as
-        // images; different levels of one texture are different memory.
-        for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
-            glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), mTarget.color(a).id());
-            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
-            bindImage(shared::kImageRSMTarget + a, mTarget.color(a), GL_WRITE_ONLY, level);
-        }
-        glProgramUniform2i(mDownsample.program().id(), mDownsample.program().uniformLocation("uTargetSize"), size,
-                           size);
-        mDownsample.program().set("uSourceLevel", level - 1);
-        // The next level reads this one with texelFetch; after the last, consumers sample the mips,
-        // read them back or load them as images.
-        const NextRead next = level + 1 < mLevels
-                                  ? NextRead::TextureFetch
-                                  : NextRead::TextureFetch | NextRead::TextureReadback | NextRead::Image;
-        mDownsample.dispatch(glm::ivec3(size, size, layerCount()), next);
-    }
+    downsampleRSMLayout(mDownsample, mTarget, timer);
 }
 
 } // namespace vplgi

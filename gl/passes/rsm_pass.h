@@ -16,12 +16,16 @@
 //  Attachments  (glsl/shared/rsm.h; all RGBA32F, size rsm.size^2, full mip chain)
 //               position  xyz world position [m], w |x|^2 (VSGL's "squared norm"; MATH.md 5.3)
 //               normal    xyz shading normal, w coverage (1 where a surface was rasterised)
-//               flux      rgb reflected flux of the texel [W]: the light's flux through the texel
-//                         times the diffuse reflectance (MATH.md 1.5), i.e. a diffuse VPL's flux
+//               flux      rgb incident flux of the texel [W]: the light's flux through the texel
+//                         (MATH.md 1.5), before reflection; a diffuse VPL's flux is this times
+//                         `diffuse`. Incident rather than reflected so that a metal (diffuse 0)
+//                         still carries the flux its specular lobe reflects (VSGL's caustics)
 //               diffuse   rgb (1 - metallic) baseColor
 //               specular  rgb F0 = mix(0.04 specular, baseColor, metallic), w perceptual roughness
 //               lobe      xyz the reflection lobe of the light's direction as a Toksvig vector
-//                         (eta/(1+eta)) xi (MATH.md 4.6-4.8); its mean over texels keeps the spread
+//                         (eta/(1+eta)) xi (MATH.md 4.6-4.8); its mean over texels keeps the spread;
+//                         w the lobe's integral factor s (glsl/shared/sg.h ggxReflectionLobe): the
+//                         specular BRDF is ~ F s normalisedSG, VSGL's "coefficient" (section 3.2)
 //
 // Details
 // -------
@@ -33,7 +37,7 @@
 //  Flux per texel (MATH.md 1.5). Spot and point: I(w) dw_t with dw_t = 4/(P00 P11 W H) cos^3(alpha),
 //  alpha the texel ray's angle to the view axis (the texel's solid angle); directional: E * 4/(P00 P11 W H),
 //  the texel's area across the beam. Surfaces take all the flux of their texel: no cosine here.
-//  Mips (rsm_downsample.comp through ComputePass, one dispatch per level: level l read with
+//  Mips (downsampleRSMLayout: rsm_downsample.comp through ComputePass, one dispatch per level: level l read with
 //  texelFetch, level l+1 written as images, six image uniforms within the GL minimum of eight).
 //  Coverage and flux are plain 2x2 means, so level l holds per-texel averages (MATH.md 5.2 reads
 //  Phi_h as one) and
@@ -98,18 +102,30 @@ struct RSMView {
     float texelFactor = 0.0f; // 4/(P00 P11 W H): on-axis texel solid angle [sr] or area [m^2]
 };
 
+// A target with the RSM layout above (2D array, full mip chain, depth when `withDepth`): the RSM
+// pass's and VSGL's G-buffer-as-light (gl/techniques/vsgl_technique.h), which share the mips.
+gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth);
+// Recomputes levels 1.. of every layer of an RSM-layout target from level 0 with `kernel`
+// (passes/rsm_downsample.comp), then issues the barriers for sampling, readback and image loads.
+void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& target, gl::PassTimer* timer = nullptr);
+
 class RSMPass {
 public:
     explicit RSMPass(const gl::ShaderLoader& shaders);
     void reloadShaders(const gl::ShaderLoader& shaders);
     // Renders every spot, point and directional light's RSM and its mips. Throws Error when params.size is
     // not a power of two. With no such light, nothing is drawn and layerCount() is 0.
-    void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params);
+    void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params,
+                gl::PassTimer* timer = nullptr);
     // Recomputes levels 1.. from level 0 (render() calls it; public for the tests).
-    void downsample();
+    void downsample(gl::PassTimer* timer = nullptr);
 
     const gl::RenderTarget& target() const { return mTarget; }
+    const ComputePass& downsampleKernel() const { return mDownsample; }
     const std::vector<RSMView>& views() const { return mViews; }
+    // shared::RSMLayerLight per layer (glsl/shared/rsm.h), for consumers that need the direction to
+    // the light at a texel; bind it at shared::kBindingRSMLayers.
+    const gl::Buffer& layerLights() const { return mLayerLights; }
     int layerCount() const { return static_cast<int>(mViews.size()); }
     int levelCount() const { return mLevels; }
 
@@ -121,6 +137,7 @@ private:
     ComputePass mDownsample;
     gl::RenderTarget mTarget;
     std::vector<RSMView> mViews;
+    gl::Buffer mLayerLights;
     int mLevels = 0;
 };
 

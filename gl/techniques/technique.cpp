@@ -4,12 +4,13 @@
 #include "direct_technique.h"
 #include "smcir_rt_technique.h"
 #include "vpl_technique.h"
+#include "vsgl_technique.h"
 
 namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct", "ir", "smcir", "smcir-rt"};
+    return {"direct", "ir", "smcir", "smcir-rt", "vpl-brsm", "vsgl"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
@@ -18,6 +19,8 @@ std::unique_ptr<Technique> createTechnique(std::string_view name)
     if (name == "ir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::IR);
     if (name == "smcir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::SMCIR);
     if (name == "smcir-rt") return std::make_unique<SMCIRRayTracedTechnique>();
+    if (name == "vsgl") return std::make_unique<VSGLTechnique>(false);
+    if (name == "vpl-brsm") return std::make_unique<VSGLTechnique>(true);
     std::string known;
     for (const std::string& n : techniqueNames()) known += (known.empty() ? "" : ", ") + n;
     throw Error("unknown technique \"" + std::string(name) + "\" (known: " + known + ")");

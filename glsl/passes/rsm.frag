@@ -1,10 +1,11 @@
 #version 450 core
-// RSM texel: world position (+ |x|^2), normal + coverage, reflected flux, diffuse and specular
-// reflectance, specular lobe (gl/passes/rsm_pass.h). The material is evaluated as in
+// RSM texel: world position (+ |x|^2), normal + coverage, incident flux, diffuse and specular
+// reflectance, specular lobe and its integral (gl/passes/rsm_pass.h). The material is evaluated as in
 // passes/gbuffer.frag (and core/scene/surface.cpp), so the RSM sees the surface the camera sees.
 #include "../shared/lights.h"
 #include "../shared/rsm.h"
 #include "../shared/bindings.h"
+#include "../shared/sg.h"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -78,18 +79,15 @@ void main()
         toLight = -uLightDirection.xyz;
     }
 
-    // Specular lobe: GGX NDF as an SG of sharpness 2/alpha^2 around n (MATH.md 4.6), warped to
-    // the reflection lobe about the mirror direction of toLight (4.7), stored as the Toksvig mean
-    // vector r xi with r = eta/(1+eta) (4.8, VSGL 3.2) so that mips can average it.
-    float alpha = max(roughness * roughness, 0.002);
-    float cosLight = max(abs(dot(n, toLight)), 1e-4);
-    float sharpness = (2.0 / (alpha * alpha)) / (4.0 * cosLight);
-    vec3 mirror = 2.0 * dot(n, toLight) * n - toLight;
+    // Specular lobe (VSGL 3.2): the GGX reflection lobe of toLight as an SG (glsl/shared/sg.h: the NDF's
+    // SG warped about n, MATH.md 4.6-4.7), stored as the Toksvig mean vector r xi, r = eta/(1+eta)
+    // (4.8) so that mips average it, and its integral factor s (mean over texels, weighted by flux).
+    SpecularLobe lobe = ggxReflectionLobe(n, toLight, roughness);
 
     outPosition = vec4(vWorldPosition, dot(vWorldPosition, vWorldPosition));
     outNormal = vec4(n, 1.0);
-    outFlux = vec4(diffuse * incident, 0.0);
+    outFlux = vec4(incident, 0.0);
     outDiffuse = vec4(diffuse, 0.0);
     outSpecular = vec4(f0, roughness);
-    outLobe = vec4(sharpness / (1.0 + sharpness) * mirror, 0.0);
+    outLobe = vec4(toksvigEncode(lobe.axis, lobe.sharpness), lobe.integral);
 }

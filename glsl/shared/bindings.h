@@ -27,6 +27,10 @@ VPLGI_CONST int kBindingShadowAtlasDraw = 10;    // SSBO int[] (tile index per i
 VPLGI_CONST int kBindingVPLs = 11;               // SSBO GpuVPL[] (glsl/shared/vpl.h), one per slot
 VPLGI_CONST int kBindingVPLBatch = 12;           // SSBO VPLBatchItem[]: the VPLs whose maps are being resampled
 
+// Storage buffers of VSGL (gl/techniques/vsgl_technique).
+VPLGI_CONST int kBindingVSGLights = 13;          // SSBO VSGLight[] (glsl/shared/sg.h): the lights, or the view lights
+VPLGI_CONST int kBindingRSMLayers = 14;          // SSBO RSMLayerLight[] (glsl/shared/rsm.h): each RSM layer's light
+
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
 VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)

@@ -18,7 +18,8 @@
 // The per-draw probability is p = I(u, v) / total (MATH.md 9.9: an estimator over N draws divides by
 // N p).
 //
-// The includer provides three table readers, declared before including this header:
+// The includer provides three table readers, declared before including this header (or defines
+// VPLGI_IMPORTANCE_TYPES_ONLY when it only reads draws):
 //   GLSL: float importanceMarginal(int u); float importanceColumn(int u, int v); float importanceValue(int u, int v);
 //   C++:  the same functions with a leading `const Tables&` argument, found by argument-dependent
 //         lookup when sampleImportance<Tables> is instantiated.
@@ -71,6 +72,7 @@ VPLGI_FUNC vec2 importanceUniforms(uint seed, uint index)
     return vec2(uniformFromHash(h1), uniformFromHash(h2));
 }
 
+#ifndef VPLGI_IMPORTANCE_TYPES_ONLY // (readers of the draws that need no table readers define it)
 // MATH.md 9.7 step 1: the smallest u in [0, width) with R(u) > target (width - 1 if none).
 VPLGI_TABLES_TEMPLATE
 VPLGI_FUNC int searchMarginal(VPLGI_TABLES_PARAM int width, float target)
@@ -126,6 +128,8 @@ VPLGI_FUNC ImportanceSample sampleImportance(VPLGI_TABLES_PARAM int width, int h
     s.probability = s.importance / total;
     return s;
 }
+
+#endif // VPLGI_IMPORTANCE_TYPES_ONLY
 
 VPLGI_SHARED_END
 

@@ -317,7 +317,7 @@ VPLGI_FUNC float vsglMipLevel(float count, float probability, float smoothness, 
 struct VSGLight {         // std430, 6 x vec4 = 96 bytes
     vec4 positionRadius2; // xyz filtered position E[x] [m], w r_i^2 = 2 sigma^2 [m^2] (MATH 5.3), >= 0
     vec4 normalValid;     // xyz unit (renormalised) normal n_i, w 1 valid / 0 empty
-    vec4 flux;            // rgb incident flux of the light Phi_i = Phi_bar_h / (N P_j) [W], w unused
+    vec4 flux;            // rgb incident flux of the light Phi_i = Phi_bar_h / (N P_j) [W], w the RSM layer it came from
     vec4 diffuse;         // rgb diffuse reflectance rho_d (BRDF = rho_d/pi), w perceptual roughness
     vec4 specular;        // rgb F0, w = s: the specular lobe's integral factor (SpecularLobe.integral)
     vec4 lobe;            // xyz unit lobe axis xi (direction the reflected light leaves in), w SG sharpness eta

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/util/params.h"
 #include "gl/api/context.h"
 
 namespace vplgi::test {
@@ -38,6 +39,28 @@ std::string objectLabel(GLenum identifier, GLuint id)
     GLsizei length = 0;
     glGetObjectLabel(identifier, id, sizeof label, &length, label);
     return std::string(label, static_cast<std::size_t>(length));
+}
+
+std::unique_ptr<Renderer> makeTechniqueRenderer(const Scene& scene, const std::string& name,
+                                                const Settings& settings)
+{
+    std::unique_ptr<Technique> technique = createTechnique(name);
+    RendererParams params;
+    ParamSetter setter(settings);
+    params.visitParams(setter);
+    technique->visitParams(setter);
+    setter.finish();
+    return std::make_unique<Renderer>(shaders(), scene, params, std::move(technique));
+}
+
+ImageRGBA32F renderIndirect(Renderer& renderer, const Camera& camera, int width, int height)
+{
+    renderer.renderFrame(camera, width, height);
+    ImageRGBA32F indirect = renderer.readRadiance();
+    const ImageRGBA32F direct = renderer.readDirect();
+    for (std::size_t i = 0; i < indirect.pixels.size(); ++i)
+        if (i % 4 != 3) indirect.pixels[i] -= direct.pixels[i];
+    return indirect;
 }
 
 } // namespace vplgi::test

@@ -2,11 +2,14 @@
 // failures (checkDebugMessages throws), and helpers for image tests.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/util/image_io.h"
 #include "gl/api/objects.h"
 #include "gl/api/shader_loader.h"
+#include "core/util/params.h"
+#include "gl/renderer.h"
 
 namespace vplgi::test {
 
@@ -18,5 +21,12 @@ const gl::ShaderLoader& shaders();
 std::string objectLabel(GLenum identifier, GLuint id);
 // Writes `image` under the test output directory (for failures) and returns the path.
 std::string saveTestImage(const std::string& name, const ImageRGBA32F& image);
+// A renderer of `scene` with technique `name`, the renderer's and the technique's fields set from
+// `settings` (key -> value, as --set); throws Error on an unknown key.
+std::unique_ptr<Renderer> makeTechniqueRenderer(const Scene& scene, const std::string& name,
+                                                const Settings& settings);
+// Renders one frame and returns the radiance minus the direct light: the technique's indirect
+// light (rows top to bottom).
+ImageRGBA32F renderIndirect(Renderer& renderer, const Camera& camera, int width, int height);
 
 } // namespace vplgi::test

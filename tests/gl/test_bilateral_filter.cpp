@@ -18,6 +18,7 @@
 #include "core/util/params.h"
 #include "gl/api/debug.h"
 #include "gl/passes/bilateral_filter.h"
+#include "determinism.h"
 #include "gl_test_context.h"
 #include "measured.h"
 
@@ -425,14 +426,10 @@ TEST_CASE("bilateral filter: bit-identical over runs", "[gl][determinism]")
         const std::vector<glm::vec4> third = fixture.run(other, radiance, params);
         CHECK(std::memcmp(first.data(), second.data(), first.size() * sizeof(glm::vec4)) == 0);
         CHECK(std::memcmp(first.data(), third.data(), first.size() * sizeof(glm::vec4)) == 0);
-        const auto* bytes = reinterpret_cast<const unsigned char*>(first.data());
-        for (std::size_t b = 0; b < first.size() * sizeof(glm::vec4); ++b) {
-            hash ^= bytes[b];
-            hash *= 1099511628211ull;
-        }
+        hash = test::hashBytes(first.data(), first.size() * sizeof(glm::vec4), hash);
     }
-    // tests/gl/filter_threads.sh compares this hash between LP_NUM_THREADS=1 and 2.
-    if (const char* file = std::getenv("VPLGI_FILTER_HASH_FILE")) std::ofstream(file) << hash << "\n";
+    // tests/gl/threads_identical.sh compares this hash between LP_NUM_THREADS=1 and 2.
+    CHECK(test::recordHash("bilateral filter", hash));
 }
 
 TEST_CASE("bilateral filter: parameters under a technique's prefix", "[gl]")

@@ -17,6 +17,7 @@
 #include "core/util/params.h"
 #include "gl/gpu_scene.h"
 #include "gl/passes/rsm_pass.h"
+#include "determinism.h"
 #include "gl_test_context.h"
 #include "glsl/shared/light_view.h"
 #include "glsl/shared/lights.h"
@@ -138,7 +139,7 @@ struct CPUTexel {
 // CPU rasterisation of planeScene's rectangle into `view`: each texel centre's ray through the
 // inverse view-projection, intersected with the plane; flux by MATH.md 1.5.
 std::vector<CPUTexel> rasterisePlane(const RSMView& view, const DirectLightSet& lights, int size, float x0, float x1,
-                                     float z0, float z1, float y, float rho)
+                                     float z0, float z1, float y)
 {
     const glm::dmat4 worldFromClip = glm::inverse(glm::dmat4(view.clipFromWorld));
     std::vector<CPUTexel> texels(static_cast<std::size_t>(size * size));
@@ -163,11 +164,11 @@ std::vector<CPUTexel> rasterisePlane(const RSMView& view, const DirectLightSet& 
                                            ? shared::lightViewCubeFaceDirection(view.face)
                                            : glm::vec3(e.axisCosOuter);
                 const float cosAlpha = glm::dot(axis, dir);
-                texel.flux = rho * e.intensity.x * shared::emitterProfile(e, dir) * view.texelFactor * cosAlpha *
+                texel.flux = e.intensity.x * shared::emitterProfile(e, dir) * view.texelFactor * cosAlpha *
                              cosAlpha * cosAlpha;
             } else {
                 texel.flux =
-                    rho * lights.directionals[static_cast<std::size_t>(view.emitter)].irradiance.x * view.texelFactor;
+                    lights.directionals[static_cast<std::size_t>(view.emitter)].irradiance.x * view.texelFactor;
             }
         }
     return texels;
@@ -199,7 +200,7 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
 {
     if (minCovered < 0) minCovered = size * size / 8 + 1;
     const RSMView& view = r.pass->views()[static_cast<std::size_t>(layer)];
-    const std::vector<CPUTexel> cpu = rasterisePlane(view, r.lights, size, x0, x1, z0, z1, y, rho);
+    const std::vector<CPUTexel> cpu = rasterisePlane(view, r.lights, size, x0, x1, z0, z1, y);
     const Level gpu = readAll(*r.pass, 0, layer);
     int coverageMismatches = 0;
     int covered = 0;
@@ -226,6 +227,8 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
         worstPosition = std::max(
             worstPosition, static_cast<double>(glm::length(glm::vec3(gpu[shared::kRSMPosition][k]) - cpu[k].position)));
         worstFlux = std::max(worstFlux, std::abs(gpu[shared::kRSMFlux][k].r - cpu[k].flux) / fluxScale);
+        // The flux is incident (before reflection); the albedo is in the diffuse attachment.
+        CHECK(gpu[shared::kRSMDiffuse][k].r == Approx(rho).epsilon(1e-6));
     }
     MEASURED(what << ": " << covered << " covered texels, " << coverageMismatches
                   << " coverage mismatches, worst position error " << worstPosition << " m, worst flux error "
@@ -259,10 +262,10 @@ TEST_CASE("RSM of a plane under a spot light: positions and flux against a CPU r
     REQUIRE(r.pass->layerCount() == 1);
     REQUIRE(r.pass->views()[0].kind == shared::kRSMLightSpot);
     const double gpuSum = compareWithCPU(r, 0, size, -4.0f, 4.0f, -4.0f, 4.0f, 0.0f, rho, "spot RSM vs CPU");
-    // The whole cone lands on the plane: flux = rho 2 pi I int t(c)^2 dc over [cos outer, 1],
-    // t = (c - cosOuter)/(cosInner - cosOuter) clamped: rho 2 pi I ((1 - ci) + (ci - co)/3).
+    // The whole cone lands on the plane: incident flux = 2 pi I int t(c)^2 dc over [cos outer, 1],
+    // t = (c - cosOuter)/(cosInner - cosOuter) clamped: 2 pi I ((1 - ci) + (ci - co)/3).
     const double ci = std::cos(static_cast<double>(inner)), co = std::cos(static_cast<double>(outer));
-    const double closedForm = rho * 2.0 * kPi * intensity * ((1.0 - ci) + (ci - co) / 3.0);
+    const double closedForm = 2.0 * kPi * intensity * ((1.0 - ci) + (ci - co) / 3.0);
     const double relative = std::abs(gpuSum - closedForm) / closedForm;
     MEASURED("spot RSM flux sum " << gpuSum << " W vs closed form " << closedForm << " W: relative error " << relative);
     // Measured 6.7e-6 at 128^2 (midpoint rule over the texels' solid angles, float sums); 2e-5 is 3x.
@@ -291,8 +294,8 @@ TEST_CASE("RSM of a plane under a directional light: positions and flux against 
         for (int k = 0; k < 4; ++k)
             CHECK(r.pass->views()[0].clipFromWorld[c][k] == Approx(fit[c][k]).margin(1e-6));
     const double gpuSum = compareWithCPU(r, 0, size, -1.0f, 1.0f, -1.5f, 1.5f, 0.0f, rho, "directional RSM vs CPU");
-    // Flux onto the plane: rho E A cos(theta).
-    const double closedForm = rho * irradiance * 2.0 * 3.0 * std::abs(static_cast<double>(sun.direction.y));
+    // Incident flux onto the plane: E A cos(theta).
+    const double closedForm = irradiance * 2.0 * 3.0 * std::abs(static_cast<double>(sun.direction.y));
     const double relative = std::abs(gpuSum - closedForm) / closedForm;
     MEASURED("directional RSM flux sum " << gpuSum << " W vs closed form " << closedForm << " W: relative error "
                                          << relative);
@@ -334,12 +337,12 @@ TEST_CASE("RSM of a plane under a point light: six cube faces, positions and flu
         gpuSum += compareWithCPU(r, face, size, x0, x1, z0, z1, 0.0f, rho, "point RSM face " + std::to_string(face),
                                  minCovered);
     }
-    // Flux onto the plane: rho I Omega, with Omega the rectangle's solid angle from the light: by
+    // Incident flux onto the plane: I Omega, with Omega the rectangle's solid angle from the light: by
     // inclusion-exclusion of rectangles with a corner below the light, each atan(a b / (h sqrt(h^2
     // + a^2 + b^2))) (odd in a and b).
     auto corner = [&](double a, double b) { return std::atan(a * b / (h * std::sqrt(h * h + a * a + b * b))); };
     const double omega = corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
-    const double closedForm = rho * intensity * omega;
+    const double closedForm = intensity * omega;
     const double relative = std::abs(gpuSum - closedForm) / closedForm;
     MEASURED("point RSM flux sum over 6 faces " << gpuSum << " W vs closed form " << closedForm << " W: relative error "
                                                 << relative);
@@ -438,17 +441,11 @@ TEST_CASE("RSM mips are bit-identical over runs", "[rsm]")
 
     const int size = 64;
     auto hashAll = [&](const Rendered& r) {
-        std::uint64_t hash = 1469598103934665603ull; // FNV-1a over every level, layer and attachment
+        std::uint64_t hash = test::hashBytes(nullptr, 0); // over every level, layer and attachment
         for (int layer = 0; layer < r.pass->layerCount(); ++layer)
             for (int l = 0; l < r.pass->levelCount(); ++l)
                 for (const auto& attachment : readAll(*r.pass, l, layer))
-                    for (const glm::vec4& v : attachment) {
-                        const auto* bytes = reinterpret_cast<const unsigned char*>(&v);
-                        for (std::size_t b = 0; b < sizeof(v); ++b) {
-                            hash ^= bytes[b];
-                            hash *= 1099511628211ull;
-                        }
-                    }
+                    hash = test::hashBytes(attachment.data(), attachment.size() * sizeof(glm::vec4), hash);
         return hash;
     };
     Rendered first = renderRSM(scene, size);
@@ -460,12 +457,8 @@ TEST_CASE("RSM mips are bit-identical over runs", "[rsm]")
     const std::uint64_t c = hashAll(renderRSM(scene, size));
     CHECK(a == b);
     CHECK(a == c);
-    // tests/gl/rsm_threads.sh runs this test under LP_NUM_THREADS=1 and 2 and compares the files.
-    if (const char* file = std::getenv("VPLGI_RSM_HASH_FILE")) {
-        std::ofstream out(file);
-        out << std::hex << a << "\n";
-        REQUIRE(out.good());
-    }
+    // tests/gl/threads_identical.sh runs this test under LP_NUM_THREADS=1 and 2 and compares the hashes.
+    CHECK(test::recordHash("rsm", a));
 }
 
 TEST_CASE("rsm.size is set through visitParams and must be a power of two", "[rsm]")

@@ -19,6 +19,7 @@
 #include "gl/renderer.h"
 #include "gl/techniques/vpl_technique.h"
 #include "glsl/shared/shadow_atlas.h"
+#include "determinism.h"
 #include "gl_test_context.h"
 #include "measured.h"
 #include "shared_assets.h"
@@ -34,23 +35,13 @@ struct Rendered {
 
 std::unique_ptr<Renderer> makeRenderer(const Scene& scene, const std::string& name, const Settings& settings)
 {
-    std::unique_ptr<Technique> technique = createTechnique(name);
-    RendererParams params;
-    ParamSetter setter(settings);
-    params.visitParams(setter);
-    technique->visitParams(setter);
-    setter.finish();
-    return std::make_unique<Renderer>(test::shaders(), scene, params, std::move(technique));
+    return test::makeTechniqueRenderer(scene, name, settings);
 }
 
 Rendered renderIndirect(Renderer& renderer, const Camera& camera, int width, int height)
 {
-    renderer.renderFrame(camera, width, height);
     Rendered out;
-    out.indirect = renderer.readRadiance();
-    const ImageRGBA32F direct = renderer.readDirect();
-    for (std::size_t i = 0; i < out.indirect.pixels.size(); ++i)
-        if (i % 4 != 3) out.indirect.pixels[i] -= direct.pixels[i];
+    out.indirect = test::renderIndirect(renderer, camera, width, height);
     out.set = *dynamic_cast<VPLTechnique&>(renderer.technique()).renderedSet();
     return out;
 }
@@ -308,11 +299,7 @@ bool sameSlots(const VPLSet& a, const VPLSet& b)
 
 std::uint64_t hashOf(const std::vector<float>& values)
 {
-    std::uint64_t h = 1469598103934665603ull; // FNV-1a over the bytes
-    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
-    for (std::size_t i = 0; i < values.size() * sizeof(float); ++i)
-        h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
+    return test::hashBytes(values.data(), values.size() * sizeof(float));
 }
 
 } // namespace
@@ -332,12 +319,7 @@ TEST_CASE("smcir and ir: the same seed gives the same image, with or without the
         // The worker's frame n renders the set of the synchronous frame n - 1 (core/vpl/vpl_pipeline.h;
         // the images differ by the camera of the frame).
         CHECK(sameSlots(renderFrames(technique, sync, 3).set, withWorker.set));
-        if (const char* file = std::getenv("VPLGI_VPL_HASH_FILE")) {
-            std::FILE* out = std::fopen(file, "a");
-            REQUIRE(out);
-            std::fprintf(out, "%s %016llx\n", technique.c_str(), static_cast<unsigned long long>(hashOf(withWorker.image)));
-            std::fclose(out);
-        }
+        CHECK(test::recordHash(technique, hashOf(withWorker.image)));
     }
 }
 

@@ -1,0 +1,233 @@
+#include "vsgl_technique.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/importance.h"
+#include "glsl/shared/rsm.h"
+#include "glsl/shared/sg.h"
+
+namespace vplgi {
+
+namespace {
+
+bool isPowerOfTwo(int n)
+{
+    return n > 0 && (n & (n - 1)) == 0;
+}
+
+int levelsOf(int size)
+{
+    return 1 + static_cast<int>(std::log2(static_cast<double>(std::max(size, 1))) + 0.5);
+}
+
+} // namespace
+
+void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLights)
+{
+    v.field(p + ".count", count, 1, 65536, "N: lights drawn from the BRSM per frame (VSGL section 4: 1024)");
+    if (!pointLights) {
+        v.field(p + ".smoothness", smoothness, 1e-3f, 1e6f,
+                "k: the footprints of the N lights cover the RSM k times; picks the mip level (section 3.2; 4)");
+        v.field(p + ".biasAlpha", biasAlpha, 0.0f, 1e6f,
+                "alpha of the consistent bias reduction (section 3.3; Fig. 6: 0.001); 0 = keep the SG approximation");
+    } else {
+        v.field(p + ".clampGeometry", clampGeometry, 0.0f, 1e9f,
+                "cap on cos cos / d^2 [1/m^2] of the VPLs; 0 = unclamped (the paper's VPL figures)");
+    }
+    v.field(p + ".viewGrid", viewGrid, 2, 4096,
+            "PDF of BRSMs: the G-buffer grid acting as the light [texels], a power of two (not in the paper)");
+    v.field(p + ".viewLevel", viewLevel, 0, 12,
+            "PDF of BRSMs: the grid's mip level whose texels are the view lights ((viewGrid / 2^level)^2 lights)");
+    v.field(p + ".seed", seed, "seed of the draws");
+    v.field(p + ".animateSeed", animateSeed, "new draws every frame (default: the same uniforms every frame)");
+    v.choice(p + ".visibility", visibility, {"ism", "none"},
+             "light visibility: imperfect shadow maps (the paper's AISMs without view adaptation) or none");
+    rsm.visitParams(v);
+}
+
+VSGLTechnique::VSGLTechnique(bool pointLights) : mPointLights(pointLights) {}
+
+VSGLTechnique::~VSGLTechnique() = default;
+
+void VSGLTechnique::visitParams(ParamVisitor& v)
+{
+    mParams.visitParams(v, std::string(name()), mPointLights);
+}
+
+void VSGLTechnique::createPasses(const gl::ShaderLoader& shaders)
+{
+    mRSM = std::make_unique<RSMPass>(shaders);
+    mSampler = std::make_unique<ImportanceSampler>(shaders, "BRSM sampler");
+    mViewRSMPass = ComputePass(shaders, "G-buffer as light", "passes/vsgl_view_rsm.comp");
+    mGeneratePass = ComputePass(shaders, mPointLights ? "VPL generation" : "VSGL generation", "passes/vsgl_generate.comp");
+    mImportancePass = ComputePass(shaders, "BRSM importance", "passes/vsgl_importance.comp");
+    mShading = std::make_unique<FullscreenPass>(shaders, "radiance estimation", "passes/vsgl_shading.frag");
+}
+
+void VSGLTechnique::setScene(const SceneContext& context)
+{
+    mScene = &context.scene;
+    mGpuScene = &context.gpuScene;
+    createPasses(context.shaders);
+    gl::SamplerDesc trilinear;
+    trilinear.minFilter = GL_LINEAR_MIPMAP_LINEAR;
+    trilinear.magFilter = GL_LINEAR;
+    mTrilinear = gl::Sampler("VSGL trilinear RSM", trilinear);
+    mViewRSM = makeRSMLayoutTarget("G-buffer as light", false);
+    mShaded = gl::RenderTarget("VSGL radiance", gl::RenderTargetDesc::colors({GL_RGBA32F, GL_RGBA32F},
+                                                                            {"radiance", "cancelled fraction"}));
+}
+
+void VSGLTechnique::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    if (mScene) createPasses(shaders);
+}
+
+void VSGLTechnique::update(const FrameContext&) {}
+
+void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target)
+{
+    require(isPowerOfTwo(mParams.viewGrid), std::string(name()) + ".viewGrid must be a power of two, not " +
+                                                std::to_string(mParams.viewGrid));
+    const std::string prefix(name());
+    mValidLights = 0;
+    // RSMs (section 4: 256^2), every frame: lights move.
+    {
+        gl::PassTimer::Scope scope(frame.timer, "RSMs");
+        mRSM->render(*mGpuScene, frame.lights, mParams.rsm);
+    }
+    const int layers = mRSM->layerCount();
+    const int size = mParams.rsm.size;
+    if (layers == 0) {
+        // No spot, point or directional light: no one-bounce light from RSMs.
+        mShaded.resize(frame.width, frame.height);
+        mShaded.clear();
+        return;
+    }
+    auto bindRSMLayout = [&](const gl::RenderTarget& t, bool filtered) {
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+            glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), t.color(a).id());
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), filtered ? mTrilinear.id() : 0);
+        }
+    };
+    {
+        gl::PassTimer::Scope scope(frame.timer, "PDF of BRSMs");
+        // 1. The G-buffer as the light: a grid in the RSM layout, its mips, level L's texels as lights.
+        const int grid = mParams.viewGrid;
+        const int viewLevel = std::min(mParams.viewLevel, levelsOf(grid) - 1);
+        mViewRSM.resize(grid, grid, 1);
+        gbuffer.bindForReading();
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+            bindImage(shared::kImageRSMTarget + a, mViewRSM.color(a), GL_WRITE_ONLY, 0);
+        mViewRSMPass.program().set("uSize", grid);
+        mViewRSMPass.program().set("uEye", frame.camera.position);
+        mViewRSMPass.dispatch(grid, grid, NextRead::TextureFetch);
+        downsampleRSMLayout(mRSM->downsampleKernel(), mViewRSM);
+        mViewLightCount = std::max(grid >> viewLevel, 1) * std::max(grid >> viewLevel, 1);
+        const auto viewBytes = static_cast<GLsizeiptr>(mViewLightCount) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
+        if (mViewLights.size() < viewBytes) mViewLights = gl::Buffer("VSGL view lights", viewBytes);
+        bindRSMLayout(mViewRSM, false);
+        bindStorageBuffer(shared::kBindingVSGLights, mViewLights);
+        const gl::Program& generate = mGeneratePass.program();
+        generate.set("uMode", 2);
+        generate.set("uCount", mViewLightCount);
+        generate.set("uSize", grid);
+        generate.set("uLevels", levelsOf(grid));
+        generate.set("uLevel", viewLevel);
+        generate.set("uSmoothness", mParams.smoothness);
+        mGeneratePass.dispatch(mViewLightCount, 1, NextRead::StorageBuffer);
+
+        // 2. Importance of every RSM texel (MATH.md 10.1), layers side by side.
+        if (!mImportance || mImportance.width() != size * layers || mImportance.height() != size) {
+            gl::TextureDesc desc;
+            desc.format = GL_R32F;
+            desc.width = size * layers;
+            desc.height = size;
+            mImportance = gl::Texture("BRSM importance", desc);
+        }
+        bindRSMLayout(mRSM->target(), false);
+        bindImage(shared::kImageImportance, mImportance, GL_WRITE_ONLY);
+        bindStorageBuffer(shared::kBindingRSMLayers, mRSM->layerLights());
+        mImportancePass.program().set("uSize", size);
+        mImportancePass.program().set("uLayers", layers);
+        mImportancePass.program().set("uViewCount", mViewLightCount);
+        mImportancePass.dispatch(size * layers, size, NextRead::Image);
+
+        // 3. The tables and N draws (MATH.md 9.7).
+        mSampler->build(mImportance, NextRead::None);
+        const std::uint32_t seed = mParams.animateSeed ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
+                                                       : mParams.seed;
+        mSampler->sample(mImportance, mParams.count, seed, NextRead::StorageBuffer);
+    }
+    {
+        gl::PassTimer::Scope scope(frame.timer, "VPL/VSGL generation");
+        const auto bytes = static_cast<GLsizeiptr>(mParams.count) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
+        if (mLights.size() < bytes) mLights = gl::Buffer(prefix + " lights", bytes);
+        bindRSMLayout(mRSM->target(), !mPointLights);
+        bindStorageBuffer(shared::kBindingImportanceSamples, mSampler->samples());
+        bindStorageBuffer(shared::kBindingVSGLights, mLights);
+        const gl::Program& generate = mGeneratePass.program();
+        generate.set("uMode", mPointLights ? 1 : 0);
+        generate.set("uCount", mParams.count);
+        generate.set("uSize", size);
+        generate.set("uLevels", mRSM->levelCount());
+        generate.set("uLevel", 0);
+        generate.set("uSmoothness", mParams.smoothness);
+        mGeneratePass.dispatch(mParams.count, 1, NextRead::StorageBuffer);
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+    }
+    {
+        gl::PassTimer::Scope scope(frame.timer, "radiance estimation");
+        mShaded.resize(frame.width, frame.height);
+        gbuffer.bindForReading();
+        bindStorageBuffer(shared::kBindingVSGLights, mLights);
+        bindStorageBuffer(shared::kBindingRSMLayers, mRSM->layerLights());
+        const gl::Program& shading = mShading->program();
+        shading.set("uCount", mParams.count);
+        shading.set("uPointLights", mPointLights ? 1 : 0);
+        shading.set("uBiasAlpha", mParams.biasAlpha);
+        shading.set("uClampGeometry", mPointLights ? mParams.clampGeometry : 0.0f);
+        shading.set("uVisibility", mParams.visibility == VSGLParams::ImperfectShadowMaps ? 1 : 0);
+        mShading->render(mShaded);
+    }
+    glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0, 0,
+                       0, 0, frame.width, frame.height, 1);
+}
+
+std::vector<std::pair<std::string, double>> VSGLTechnique::frameStats() const
+{
+    return {{mPointLights ? "vpls" : "vsgls", static_cast<double>(mParams.count)},
+            {"view lights", static_cast<double>(mViewLightCount)},
+            {"rsm layers", static_cast<double>(mRSM ? mRSM->layerCount() : 0)}};
+}
+
+std::vector<DebugView> VSGLTechnique::debugViews() const
+{
+    const std::string t(name());
+    std::vector<DebugView> views;
+    const bool haveRSM = mRSM && mRSM->layerCount() > 0;
+    DebugView flux{t + ".rsm", "the RSMs' incident flux, every layer (renderer.displayLayer picks one)",
+                   haveRSM ? &mRSM->target().color(shared::kRSMFlux) : nullptr, shared::kDebugViewColor};
+    flux.layerCount = 0;
+    views.push_back(flux);
+    DebugView normals{t + ".rsmNormal", "the RSMs' normals", haveRSM ? &mRSM->target().color(shared::kRSMNormal) : nullptr,
+                      shared::kDebugViewNormal};
+    normals.layerCount = 0;
+    views.push_back(normals);
+    views.push_back({t + ".importance", "the PDF of BRSMs: importance of every RSM texel, layers side by side",
+                     mImportance ? &mImportance : nullptr, shared::kDebugViewCount, {0.0f, 1.0f}});
+    views.push_back({t + ".viewLights", "the G-buffer grid acting as the light (its flux: coverage)",
+                     mViewRSM ? &mViewRSM.color(shared::kRSMNormal) : nullptr, shared::kDebugViewNormal});
+    if (!mPointLights)
+        views.push_back({t + ".cancellation",
+                         "fraction of the lights whose SG approximation section 3.3 cancelled (Fig. 6 bottom)",
+                         mShaded ? &mShaded.color(1) : nullptr, shared::kDebugViewScalar, {0.0f, 1.0f}});
+    return views;
+}
+
+} // namespace vplgi

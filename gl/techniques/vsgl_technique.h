@@ -1,0 +1,121 @@
+// Techniques `vsgl` and `vpl-brsm`: one-bounce diffuse and glossy indirect light from reflective
+// shadow maps, with bidirectional-RSM importance sampling (Tokuyoshi, Virtual Spherical Gaussian
+// Lights for Real-Time Glossy Indirect Illumination, Pacific Graphics 2015; papers/002). The two
+// share every pass and draw the same N samples; only the light representation differs, as in the
+// paper's comparisons: `vsgl` turns each sample into a virtual spherical Gaussian light read from
+// the RSM mips, `vpl-brsm` into a virtual point light (eq. 1) at the sampled texel.
+//
+// Intro
+// -----
+// VPLs from an RSM show spikes near surfaces and on glossy receivers (the 1/d^2 and the BRDF peak of
+// eq. 1) and flicker where the geometry is discontinuous. A VSGL replaces the point by a spherical
+// light of radius r_i, whose radiance integral (eq. 2) is approximated by a triple product of SGs
+// (eq. 3): the receiver's GGX lobe as an anisotropic SG, the light's diffuse and specular lobes as
+// SGs and the cone it subtends as an SG. The lights come from filtered importance sampling: the
+// sampled texel's values are read from the mip level that matches the sample density (section 3.2),
+// so a light's radius, normal and lobe are averages over its footprint. Section 3.3 drops the SG
+// approximation where the light is small against the BRDF's sharpness, so the estimator converges
+// as N grows.
+//
+// Overview (per frame; the timer scopes are the rows of the paper's Table 1)
+// --------
+//  RSMs                 RSMPass: every spot, point (cube faces) and directional light, with mips
+//  PDF of BRSMs         1. the G-buffer on a grid in the RSM layout + its mips (vsgl_view_rsm.comp,
+//                          the shared mip kernel); level L's texels become view lights
+//                          (vsgl_generate.comp, grid mode)
+//                       2. importance of every RSM texel = its unoccluded VSGL contribution to the
+//                          view lights (vsgl_importance.comp; MATH.md 10.1), into an R32F map with
+//                          the layers side by side
+//                       3. ImportanceSampler: tables and N draws (MATH.md 9.7)
+//  VPL/VSGL generation  vsgl_generate.comp: VSGLight per draw (mip level, radius, lobe) or VPL
+//  shadow maps          imperfect shadow maps of the N lights (or none)
+//  radiance estimation  vsgl_shading.frag: every pixel sums the N lights
+//
+// Details
+// -------
+//  Flux: a draw of texel j with probability P_j carries Phi_h / (N P_j), Phi_h the mip value at the
+//  sampled level (a per-texel mean; MATH.md 5.2's reading), so the N lights estimate the RSM's total.
+//  The view lights: a uniform grid of the G-buffer (vsgl.viewGrid^2 texels, level vsgl.viewLevel:
+//  (viewGrid / 2^viewLevel)^2 lights). The paper does not say how many camera samples its BRSM uses.
+//  Reference: the one-bounce path tracer (`vplgi compare --reference-mode onebounce`): light ->
+//  one reflection -> the primary hit, from the lights the RSMs see (spot, point, directional).
+//  Seed: the draws use the same uniforms every frame unless vsgl.animateSeed (the samples then move
+//  only as the PDF moves: the temporal coherence the paper's videos show).
+//
+// References
+// ----------
+//  papers/002 sections 3.1-3.3 and 4; MATH.md 4, 5, 10; Ritschel et al.: Interactive Global
+//  Illumination Based on Coherent Surface Shadow Maps (BRSM), 2011; Dachsbacher, Stamminger: RSMs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "../api/render_target.h"
+#include "../passes/compute_pass.h"
+#include "../passes/fullscreen_pass.h"
+#include "../passes/importance_sampler.h"
+#include "../passes/rsm_pass.h"
+#include "technique.h"
+
+namespace vplgi {
+
+struct VSGLParams {
+    enum Visibility { ImperfectShadowMaps, NoVisibility };
+    int count = 1024;           // N lights (section 4: 1024) [1, 65536]
+    float smoothness = 4.0f;    // k of the mip level (section 3.2; section 4: 4)
+    float biasAlpha = 0.001f;   // alpha of section 3.3 (Fig. 6: 0.001); 0 = never cancel (vsgl only)
+    float clampGeometry = 0.0f; // vpl-brsm: cap on cos cos / d^2 [1/m^2]; 0 = none (the paper's VPL figures)
+    int viewGrid = 64;          // the G-buffer grid of the PDF pass [texels], a power of two
+    int viewLevel = 2;          // its mip level whose texels are the view lights ((64/4)^2 = 256)
+    std::uint32_t seed = 1;     // the draws' uniforms
+    bool animateSeed = false;   // new uniforms every frame
+    int visibility = NoVisibility;
+    RSMParams rsm;              // key rsm.size (section 4: 256^2)
+
+    void visitParams(ParamVisitor& visitor, const std::string& prefix, bool pointLights);
+};
+
+class VSGLTechnique final : public Technique {
+public:
+    explicit VSGLTechnique(bool pointLights);
+    ~VSGLTechnique() override;
+    std::string_view name() const override { return mPointLights ? "vpl-brsm" : "vsgl"; }
+    void setScene(const SceneContext& context) override;
+    void update(const FrameContext& frame) override;
+    void render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target) override;
+    void visitParams(ParamVisitor& visitor) override;
+    void reloadShaders(const gl::ShaderLoader& shaders) override;
+    std::vector<std::pair<std::string, double>> frameStats() const override;
+    std::vector<DebugView> debugViews() const override;
+
+    // For tests.
+    const RSMPass& rsm() const { return *mRSM; }
+    const gl::Buffer& lights() const { return mLights; }
+    const gl::Texture& importance() const { return mImportance; }
+
+private:
+    void createPasses(const gl::ShaderLoader& shaders);
+
+    bool mPointLights;
+    VSGLParams mParams;
+    const Scene* mScene = nullptr;
+    const GpuScene* mGpuScene = nullptr;
+    std::unique_ptr<RSMPass> mRSM;
+    std::unique_ptr<ImportanceSampler> mSampler;
+    ComputePass mViewRSMPass;
+    ComputePass mGeneratePass;
+    ComputePass mImportancePass;
+    std::unique_ptr<FullscreenPass> mShading;
+    gl::Sampler mTrilinear;
+    gl::RenderTarget mViewRSM;   // the G-buffer grid in the RSM layout, with mips
+    gl::Texture mImportance;     // R32F, (rsm.size x layers) x rsm.size
+    gl::Buffer mViewLights;      // VSGLight[(viewGrid >> viewLevel)^2]
+    gl::Buffer mLights;          // VSGLight[N]
+    gl::RenderTarget mShaded;    // radiance, cancelled fraction
+    int mValidLights = 0;
+    int mViewLightCount = 0;
+};
+
+} // namespace vplgi

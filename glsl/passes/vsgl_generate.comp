@@ -1,0 +1,92 @@
+#version 450 core
+// VSGL generation (VSGL section 3.2; gl/techniques/vsgl_technique.h): one light per invocation from
+// a mipmapped RSM-layout target (glsl/shared/rsm.h), written as a VSGLight (glsl/shared/sg.h).
+//  uMode 0, importance draws (the RSM): draw i's texel j with per-draw probability P_j
+//    (passes/importance_sample.comp); the VSGL reads level h = 1/2 log2(k / (N P_j)) (MATH.md 5.2)
+//    trilinearly: filtered position E[x], E[|x|^2] -> r^2 = 2 (E|x|^2 - |E x|^2) (5.3), normal,
+//    diffuse and specular coefficients, the Toksvig lobe (4.8); flux Phi_h / (N P_j).
+//  uMode 1, the same draws as VPLs (baseline vpl-brsm, eq. 1): level 0, no filtering, r = 0.
+//  uMode 2, a grid (the view lights): every texel of level uLevel is a light, flux 4^L Phi_L.
+#include "shared/bindings.h"
+#define VPLGI_IMPORTANCE_TYPES_ONLY
+#include "shared/importance.h"
+#include "shared/rsm.h"
+#include "shared/sg.h"
+
+layout(local_size_x = 64) in;
+
+layout(binding = kUnitRSMSource) uniform sampler2DArray uSource[kRSMAttachmentCount];
+layout(std430, binding = kBindingImportanceSamples) readonly buffer Samples { ImportanceSample samples[]; };
+layout(std430, binding = kBindingVSGLights) writeonly buffer Lights { VSGLight lights[]; };
+
+uniform int uMode;
+uniform int uCount;        // lights to write
+uniform int uSize;         // level-0 edge of one layer [texels]
+uniform int uLevels;       // mip levels
+uniform int uLevel;        // uMode 2: the level whose texels are lights
+uniform float uSmoothness; // k
+
+vec4 fetch(int a, vec3 uvLayer, float level, bool filtered, ivec3 texel)
+{
+    return filtered ? textureLod(uSource[a], uvLayer, level) : texelFetch(uSource[a], texel, int(level));
+}
+
+void main()
+{
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= uCount) return;
+    VSGLight light;
+    light.positionRadius2 = vec4(0.0);
+    light.normalValid = vec4(0.0);
+    light.flux = vec4(0.0);
+    light.diffuse = vec4(0.0);
+    light.specular = vec4(0.0);
+    light.lobe = vec4(0.0, 0.0, 1.0, 0.0);
+
+    ivec3 texel;
+    float level = 0.0;
+    float fluxScale;
+    bool filtered = false;
+    if (uMode == 2) {
+        int edge = max(uSize >> uLevel, 1);
+        texel = ivec3(i % edge, i / edge, 0);
+        level = float(uLevel);
+        fluxScale = exp2(2.0 * float(uLevel)); // level-L texels are means over 4^L level-0 texels
+    } else {
+        ImportanceSample s = samples[i];
+        if (s.x < 0 || !(s.probability > 0.0)) {
+            lights[i] = light;
+            return;
+        }
+        texel = ivec3(s.x % uSize, s.y, s.x / uSize); // the importance map holds the layers side by side
+        fluxScale = 1.0 / (float(uCount) * s.probability); // Phi / (N P_j): an unbiased N-draw estimator
+        if (uMode == 0) {
+            level = vsglMipLevel(float(uCount), s.probability, uSmoothness, uLevels); // MATH.md 5.2
+            filtered = true;
+        }
+    }
+    vec3 uvLayer = vec3((vec2(texel.xy) + 0.5) / float(uSize), float(texel.z));
+    vec4 position = fetch(kRSMPosition, uvLayer, level, filtered, texel);
+    vec4 normal = fetch(kRSMNormal, uvLayer, level, filtered, texel);
+    vec4 flux = fetch(kRSMFlux, uvLayer, level, filtered, texel);
+    if (!(normal.w > 0.0) || !(flux.r + flux.g + flux.b > 0.0) || dot(normal.xyz, normal.xyz) == 0.0) {
+        lights[i] = light;
+        return;
+    }
+    vec4 diffuse = fetch(kRSMDiffuse, uvLayer, level, filtered, texel);
+    vec4 specular = fetch(kRSMSpecular, uvLayer, level, filtered, texel);
+    vec4 lobe = fetch(kRSMLobe, uvLayer, level, filtered, texel);
+    // The filtered values are means weighted by flux over the covered texels (rsm_pass.h); the
+    // radius from the positional variance (5.3), 0 for a point light (uMode 1).
+    float variance = max(position.w - dot(position.xyz, position.xyz), 0.0);
+    vec3 axis;
+    float sharpness;
+    toksvigDecode(lobe.xyz, axis, sharpness);
+    light.positionRadius2 = vec4(position.xyz, uMode == 1 ? 0.0 : 2.0 * variance);
+    light.normalValid = vec4(normalize(normal.xyz), 1.0);
+    light.flux = vec4(flux.rgb * fluxScale, float(texel.z)); // w: the layer (its light: RSMLayerLight)
+    light.diffuse = vec4(diffuse.rgb, specular.w);
+    light.specular = vec4(specular.rgb, lobe.w);
+    light.lobe = vec4(axis, sharpness);
+    lights[i] = light;
+}

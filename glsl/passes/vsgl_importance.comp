@@ -1,0 +1,52 @@
+#version 450 core
+// The PDF of BRSMs (VSGL section 3; MATH.md 10.1): the importance of RSM texel j is its unoccluded
+// contribution to the camera, evaluated "in the same fashion as VSGLs ... by exchanging RSMs and a
+// G-buffer": texel j is the receiver (its BRDF lobe about the direction to the light, from level 0
+// of the RSM) and the view lights (passes/vsgl_view_rsm.comp, then vsgl_generate.comp's grid mode)
+// are the emitters, so glossy texels that reflect towards what the camera sees get the importance
+// a diffuse point formula would miss (the paper's Fig. 4a). Importance = luminance(incident flux x
+// that sum). Layers sit side by side in the map: texel (x + layer size, y).
+#include "shared/bindings.h"
+#include "shared/rsm.h"
+#include "shared/sg.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = kUnitRSMSource) uniform sampler2DArray uSource[kRSMAttachmentCount];
+layout(std430, binding = kBindingVSGLights) readonly buffer ViewLights { VSGLight viewLights[]; };
+layout(std430, binding = kBindingRSMLayers) readonly buffer Layers { RSMLayerLight layers[]; };
+layout(r32f, binding = kImageImportance) writeonly uniform image2D uImportance;
+
+uniform int uSize;       // RSM edge [texels]
+uniform int uLayers;     // RSM layers
+uniform int uViewCount;  // view lights
+
+void main()
+{
+    ivec2 at = ivec2(gl_GlobalInvocationID.xy);
+    if (at.x >= uSize * uLayers || at.y >= uSize) return;
+    ivec3 texel = ivec3(at.x % uSize, at.y, at.x / uSize);
+    vec4 normal = texelFetch(uSource[kRSMNormal], texel, 0);
+    vec4 flux = texelFetch(uSource[kRSMFlux], texel, 0);
+    float importance = 0.0;
+    if (normal.w > 0.0 && flux.r + flux.g + flux.b > 0.0) {
+        vec4 position = texelFetch(uSource[kRSMPosition], texel, 0);
+        vec4 diffuse = texelFetch(uSource[kRSMDiffuse], texel, 0);
+        vec4 specular = texelFetch(uSource[kRSMSpecular], texel, 0);
+        VSGLShadingPoint s;
+        s.position = position.xyz;
+        s.normal = normalize(normal.xyz);
+        s.view = rsmDirectionToLight(layers[texel.z], position.xyz); // the receiver's "view" in the exchanged roles
+        s.diffuse = diffuse.rgb;
+        s.f0 = specular.rgb;
+        s.roughness = specular.w;
+        VSGLReceiver receiver = vsglReceiver(s);
+        vec3 sum = vec3(0.0);
+        float cancelled;
+        for (int k = 0; k < uViewCount; ++k) sum += vsglRadianceReceiver(receiver, viewLights[k], 0.0, cancelled);
+        vec3 response = flux.rgb * sum;
+        importance = max(0.2126 * response.r + 0.7152 * response.g + 0.0722 * response.b, 0.0);
+        if (!(importance < 3.0e38)) importance = 0.0; // no NaN or Inf into the tables
+    }
+    imageStore(uImportance, at, vec4(importance, 0.0, 0.0, 0.0));
+}
