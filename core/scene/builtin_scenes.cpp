@@ -92,24 +92,31 @@ int cellsAlong(const glm::vec3& edge, float cellSize)
 }
 
 // The rectangle origin + s edgeU + t edgeV, s, t in [0,1], in cells of at most about cellSize;
-// its front side is the one edgeU x edgeV points to.
-void addRect(Mesh& mesh, const glm::vec3& origin, const glm::vec3& edgeU, const glm::vec3& edgeV, float cellSize)
+// its front side is the one edgeU x edgeV points to. Texcoords run over [0,1] along each edge, or,
+// with tileSize > 0, in units of tileSize metres (a texture then repeats every tileSize metres on
+// every rectangle, whatever its size).
+void addRect(Mesh& mesh, const glm::vec3& origin, const glm::vec3& edgeU, const glm::vec3& edgeV, float cellSize,
+             float tileSize = 0.0f)
 {
+    const std::size_t first = mesh.vertices.size();
     addPatch(mesh, Quad{origin, origin + edgeU, origin + edgeU + edgeV, origin + edgeV}, cellsAlong(edgeU, cellSize),
              cellsAlong(edgeV, cellSize));
+    if (tileSize <= 0.0f) return;
+    const glm::vec2 tiles(glm::length(edgeU) / tileSize, glm::length(edgeV) / tileSize);
+    for (std::size_t i = first; i < mesh.vertices.size(); ++i) mesh.vertices[i].texcoord *= tiles;
 }
 
 // A closed axis-aligned box with outward normals. Each face gets its own vertices (sharp edges).
-void addBox(Mesh& mesh, const glm::vec3& lower, const glm::vec3& upper, float cellSize)
+void addBox(Mesh& mesh, const glm::vec3& lower, const glm::vec3& upper, float cellSize, float tileSize = 0.0f)
 {
     const glm::vec3 size = upper - lower;
     const glm::vec3 dx(size.x, 0.0f, 0.0f), dy(0.0f, size.y, 0.0f), dz(0.0f, 0.0f, size.z);
-    addRect(mesh, glm::vec3(upper.x, lower.y, lower.z), dy, dz, cellSize); // +x: y cross z = +x
-    addRect(mesh, lower, dz, dy, cellSize);                                // -x
-    addRect(mesh, glm::vec3(lower.x, upper.y, lower.z), dz, dx, cellSize); // +y
-    addRect(mesh, lower, dx, dz, cellSize);                                // -y
-    addRect(mesh, glm::vec3(lower.x, lower.y, upper.z), dx, dy, cellSize); // +z
-    addRect(mesh, lower, dy, dx, cellSize);                                // -z
+    addRect(mesh, glm::vec3(upper.x, lower.y, lower.z), dy, dz, cellSize, tileSize); // +x: y cross z = +x
+    addRect(mesh, lower, dz, dy, cellSize, tileSize);                                // -x
+    addRect(mesh, glm::vec3(lower.x, upper.y, lower.z), dz, dx, cellSize, tileSize); // +y
+    addRect(mesh, lower, dx, dz, cellSize, tileSize);                                // -y
+    addRect(mesh, glm::vec3(lower.x, lower.y, upper.z), dx, dy, cellSize, tileSize); // +z
+    addRect(mesh, lower, dy, dx, cellSize, tileSize);                                // -z
 }
 
 // Point on the unit circle in the xz plane; as phi grows it turns from +z towards +x, so that
@@ -160,6 +167,103 @@ void addSphere(Mesh& mesh, const glm::vec3& center, float radius, int rings, int
         vertex.position = center + radius * direction;
         vertex.normal = sense * direction;
         return vertex;
+    });
+}
+
+// A section of a vertical cylindrical wall standing on baseCenter over the directions
+// ringDirection(phi), phi in [phi0, phi1]: the inner face at `radius` (normals towards the axis), the
+// outer face at radius + thickness, a flat top rim and two flat ends. No bottom: it stands on a floor.
+void addRingWall(Mesh& mesh, const glm::vec3& baseCenter, float radius, float thickness, float height, float phi0,
+                 float phi1, int segments)
+{
+    const float outer = radius + thickness;
+    const glm::vec3 up(0.0f, height, 0.0f);
+    // Inner face: phi runs backwards, so that dP/du x dP/dv points at the axis.
+    addGrid(mesh, GridShape{segments, 1, false, false}, [&](float u, float v) {
+        Vertex vertex;
+        const glm::vec3 direction = ringDirection(glm::mix(phi1, phi0, u));
+        vertex.normal = -direction;
+        vertex.position = baseCenter + radius * direction + v * up;
+        return vertex;
+    });
+    addGrid(mesh, GridShape{segments, 1, false, false}, [&](float u, float v) {
+        Vertex vertex;
+        vertex.normal = ringDirection(glm::mix(phi0, phi1, u));
+        vertex.position = baseCenter + outer * vertex.normal + v * up;
+        return vertex;
+    });
+    // Top rim: from the outer edge (v = 0) inwards, so that it faces up.
+    addGrid(mesh, GridShape{segments, 1, false, false}, [&](float u, float v) {
+        Vertex vertex;
+        vertex.normal = glm::vec3(0.0f, 1.0f, 0.0f);
+        vertex.position = baseCenter + glm::mix(outer, radius, v) * ringDirection(glm::mix(phi0, phi1, u)) + up;
+        return vertex;
+    });
+    // The ends face away from the arc: radial x up = -d/dphi at phi0, up x radial = +d/dphi at phi1.
+    const glm::vec3 start = baseCenter + radius * ringDirection(phi0), startOut = thickness * ringDirection(phi0);
+    const glm::vec3 end = baseCenter + radius * ringDirection(phi1), endOut = thickness * ringDirection(phi1);
+    addPatch(mesh, Quad{start, start + startOut, start + startOut + up, start + up}, 1, 1);
+    addPatch(mesh, Quad{end, end + up, end + up + endOut, end + endOut}, 1, 1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Procedural normal maps
+
+// A tangent-space normal map of a periodic height field h(s, t), s, t in [0,1) over one repeat of
+// the texture, h in units of that repeat's length: n = normalize(-dh/ds, -dh/dt, 1) (s along the
+// tangent, t along the bitangent, i.e. texcoord x and y; rows are t, as sampleImage reads them),
+// stored as 8-bit (n + 1) / 2. Central differences with wrap-around keep the map seamless, and the
+// mean slope of a periodic height field is zero, so the surface keeps its mean orientation.
+template <class Height>
+Image makeNormalMap(const std::string& name, int size, Height height)
+{
+    Image image;
+    image.name = name;
+    image.width = image.height = size;
+    image.rgba.resize(static_cast<std::size_t>(size) * size * 4);
+    const float step = 1.0f / static_cast<float>(size);
+    auto at = [&](int i, int j) {
+        const auto wrap = [size](int k) { return ((k % size) + size) % size; };
+        return height((static_cast<float>(wrap(i)) + 0.5f) * step, (static_cast<float>(wrap(j)) + 0.5f) * step);
+    };
+    for (int j = 0; j < size; ++j) {
+        for (int i = 0; i < size; ++i) {
+            const float dhds = (at(i + 1, j) - at(i - 1, j)) / (2.0f * step);
+            const float dhdt = (at(i, j + 1) - at(i, j - 1)) / (2.0f * step);
+            const glm::vec3 n = glm::normalize(glm::vec3(-dhds, -dhdt, 1.0f));
+            std::uint8_t* texel = &image.rgba[(static_cast<std::size_t>(j) * size + i) * 4];
+            for (int c = 0; c < 3; ++c)
+                texel[c] = static_cast<std::uint8_t>(std::lround((0.5f * n[c] + 0.5f) * 255.0f));
+            texel[3] = 255;
+        }
+    }
+    return image;
+}
+
+float smoothStep(float edge0, float edge1, float x)
+{
+    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+// One square tile per repeat: a flat top, bevelled down into a grout line along the edges.
+Image makeTileNormalMap()
+{
+    return makeNormalMap("tiles_normal", 128, [](float s, float t) {
+        const float edge = std::min(std::min(s, 1.0f - s), std::min(t, 1.0f - t)); // distance to the grout line
+        return 0.03f * smoothStep(0.02f, 0.08f, edge); // slopes up to 0.75 (37 degrees) on the bevel
+    });
+}
+
+// One round bump per repeat: h = depth cos^2(pi r / (2 r0)) inside r0 of the centre.
+Image makeBumpNormalMap()
+{
+    return makeNormalMap("bumps_normal", 128, [](float s, float t) {
+        constexpr float kRadius = 0.4f, kDepth = 0.12f; // slopes up to kDepth pi / (2 kRadius) = 0.47
+        const float r = glm::length(glm::vec2(s - 0.5f, t - 0.5f));
+        if (r >= kRadius) return 0.0f;
+        const float c = std::cos(0.5f * kPi * r / kRadius);
+        return kDepth * c * c;
     });
 }
 
@@ -239,6 +343,23 @@ Light makePointLight(const std::string& name, const glm::vec3& position, const g
     light.position = position;
     light.color = color;
     light.intensity = intensity;
+    return light;
+}
+
+// A spot light at `position` aimed at `target`; cone angles in degrees (full intensity inside the
+// inner one, none outside the outer one).
+Light makeSpotLight(const std::string& name, const glm::vec3& position, const glm::vec3& target,
+                    const glm::vec3& color, float intensity, float innerDegrees, float outerDegrees)
+{
+    Light light;
+    light.name = name;
+    light.type = LightType::Spot;
+    light.position = position;
+    light.direction = glm::normalize(target - position);
+    light.color = color;
+    light.intensity = intensity;
+    light.innerConeAngle = glm::radians(innerDegrees);
+    light.outerConeAngle = glm::radians(outerDegrees);
     return light;
 }
 
@@ -802,11 +923,110 @@ Scene makeStreet()
     return scene;
 }
 
+// ---------------------------------------------------------------------------------------------
+// glossy (VSGL Fig. 1 and 5: glossy, normal-mapped surfaces lit by a moving light)
+
+constexpr float kGlossyHalfWidth = 5.0f;   // the room spans x in [-5, 5] m
+constexpr float kGlossyHalfDepth = 4.0f;   // z in [-4, 4] m
+constexpr float kGlossyHeight = 4.0f;      // floor to ceiling [m]
+constexpr float kGlossyTessellation = 0.5f;
+// VSGL's Phong exponent 1023 corresponds to GGX alpha = sqrt(2 / (1023 + 2)) = 0.044, i.e.
+// roughness 0.21 (MATH.md, Blinn-Phong vs microfacet NDFs); the glossy surfaces here use 0.25-0.3.
+constexpr float kGlossyRoughness = 0.3f;
+
+// Adds a glossy dielectric (F0 = 0.04) with a normal map.
+int addNormalMappedMaterial(Scene& scene, const std::string& name, const glm::vec3& albedo, float roughness,
+                            int normalImage)
+{
+    const int index = addMaterial(scene, name, albedo, roughness, 1.0f);
+    scene.materials[static_cast<std::size_t>(index)].normalTexture.image = normalImage;
+    return index;
+}
+
+int addImage(Scene& scene, Image image)
+{
+    scene.images.push_back(std::move(image));
+    return static_cast<int>(scene.images.size()) - 1;
+}
+
+Scene makeGlossy()
+{
+    Scene scene = newScene("glossy");
+    const int tiles = addImage(scene, makeTileNormalMap());
+    const int bumps = addImage(scene, makeBumpNormalMap());
+    const int floorMaterial = addNormalMappedMaterial(scene, "floor_tiles", glm::vec3(0.55f, 0.5f, 0.45f),
+                                                      kGlossyRoughness, tiles);
+    const int panelMaterial = addNormalMappedMaterial(scene, "wall_panels", glm::vec3(0.35f, 0.42f, 0.55f),
+                                                      0.25f, bumps);
+    const int lacquer = addNormalMappedMaterial(scene, "lacquer_bumps", glm::vec3(0.6f, 0.12f, 0.1f),
+                                                kGlossyRoughness, bumps);
+    const int brass = addMaterial(scene, "brass", glm::vec3(0.91f, 0.72f, 0.42f), 0.25f, 1.0f);
+    scene.materials[static_cast<std::size_t>(brass)].metallic = 1.0f;
+    const int white = addMaterial(scene, "plaster", glm::vec3(0.75f, 0.74f, 0.72f));
+    const int red = addMaterial(scene, "wall_red", glm::vec3(0.62f, 0.12f, 0.08f));
+    const int green = addMaterial(scene, "wall_green", glm::vec3(0.14f, 0.45f, 0.2f));
+    const int ochre = addMaterial(scene, "ochre", glm::vec3(0.7f, 0.5f, 0.18f));
+
+    // The room, every face towards the inside. Tiles of 0.5 m on the floor, 0.4 m panels on the
+    // back wall; the other walls and the ceiling are diffuse.
+    const float x0 = -kGlossyHalfWidth, x1 = kGlossyHalfWidth, z0 = -kGlossyHalfDepth, z1 = kGlossyHalfDepth;
+    const glm::vec3 width(x1 - x0, 0.0f, 0.0f), depth(0.0f, 0.0f, z1 - z0), height(0.0f, kGlossyHeight, 0.0f);
+    Mesh floor = newMesh("floor", floorMaterial);
+    addRect(floor, glm::vec3(x0, 0.0f, z0), depth, width, kGlossyTessellation, 0.5f); // z cross x = +y
+    Mesh back = newMesh("back_wall", panelMaterial);
+    addRect(back, glm::vec3(x0, 0.0f, z0), width, height, kGlossyTessellation, 0.4f); // x cross y = +z
+    Mesh ceiling = newMesh("ceiling", white), front = newMesh("front_wall", white);
+    addRect(ceiling, glm::vec3(x0, kGlossyHeight, z0), width, depth, kGlossyTessellation); // -y
+    addRect(front, glm::vec3(x0, 0.0f, z1), height, width, kGlossyTessellation);           // -z
+    Mesh left = newMesh("left_wall", red), right = newMesh("right_wall", green);
+    addRect(left, glm::vec3(x0, 0.0f, z0), height, depth, kGlossyTessellation);  // y cross z = +x
+    addRect(right, glm::vec3(x1, 0.0f, z0), depth, height, kGlossyTessellation); // -x
+    generateTangents(floor);
+    generateTangents(back);
+    for (Mesh* mesh : {&floor, &back, &ceiling, &front, &left, &right}) placeMesh(scene, std::move(*mesh));
+
+    // Objects: a pedestal carrying a brass sphere, a bumpy lacquered block turned 25 degrees, and a
+    // column from floor to ceiling. None is on the spot light's path (see glossy-moving-light.json).
+    Mesh pedestal = newMesh("pedestal", white);
+    addBox(pedestal, glm::vec3(-0.4f, 0.0f, -0.4f), glm::vec3(0.4f, 0.9f, 0.4f), kGlossyTessellation);
+    Mesh sphere = newMesh("sphere", brass);
+    addSphere(sphere, glm::vec3(0.0f, 1.35f, 0.0f), 0.45f, 24, 48, false);
+    Mesh block = newMesh("block", lacquer);
+    addBox(block, glm::vec3(-0.7f, 0.0f, -0.5f), glm::vec3(0.7f, 0.7f, 0.5f), kGlossyTessellation, 0.35f);
+    generateTangents(block);
+    Mesh column = newMesh("column", ochre);
+    addCylinder(column, glm::vec3(0.0f), 0.3f, kGlossyHeight, 32, 4, false); // floor to ceiling: no caps
+    const glm::mat4 pedestalAt = glm::translate(glm::mat4(1.0f), glm::vec3(-2.2f, 0.0f, -1.8f));
+    const int pedestalMesh = addMesh(scene, std::move(pedestal));
+    const int sphereMesh = addMesh(scene, std::move(sphere));
+    addInstance(scene, pedestalMesh, pedestalAt);
+    addInstance(scene, sphereMesh, pedestalAt);
+    addInstance(scene, addMesh(scene, std::move(block)),
+                glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.8f, 0.0f, -1.6f)), glm::radians(25.0f),
+                            glm::vec3(0.0f, 1.0f, 0.0f)));
+    addInstance(scene, addMesh(scene, std::move(column)), glm::translate(glm::mat4(1.0f), glm::vec3(3.2f, 0.0f, 1.5f)));
+
+    // A warm spot under the ceiling, 2.9 m from the room's axis at 150 degrees (from +x towards +z),
+    // aimed down across the axis at the glossy floor 1.2 m beyond it: the floor's highlight throws
+    // glossy light onto the walls and the objects. scenes/glossy-moving-light.json moves it around
+    // the axis in 45 degree steps, starting here.
+    const glm::vec3 around(std::cos(glm::radians(150.0f)), 0.0f, std::sin(glm::radians(150.0f)));
+    scene.lights.push_back(makeSpotLight("spot", 2.9f * around + glm::vec3(0.0f, 3.6f, 0.0f), -1.2f * around,
+                                         glm::vec3(1.0f, 0.9f, 0.75f), 60.0f, 25.0f, 40.0f));
+
+    scene.cameras.push_back(
+        makeCamera("default", glm::vec3(0.0f, 1.7f, 3.7f), glm::vec3(0.0f, 1.0f, -2.0f), 60.0f, 0.05f, 50.0f));
+    scene.cameras.push_back(
+        makeCamera("corner", glm::vec3(4.5f, 3.0f, 3.5f), glm::vec3(-1.0f, 0.5f, -1.5f), 60.0f, 0.05f, 50.0f));
+    scene.validate();
+    return scene;
+}
+
 } // namespace
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"cornell", "furnace", "maze", "street"};
+    return {"caustics", "cornell", "furnace", "glossy", "maze", "street"};
 }
 
 bool isBuiltinScene(const std::string& name)
@@ -817,8 +1037,10 @@ bool isBuiltinScene(const std::string& name)
 
 Scene makeBuiltinScene(const std::string& name)
 {
+    if (name == "caustics") return makeCaustics(CausticsParams{});
     if (name == "cornell") return makeCornell();
     if (name == "furnace") return makeFurnace(FurnaceParams{});
+    if (name == "glossy") return makeGlossy();
     if (name == "maze") return makeMaze();
     if (name == "street") return makeStreet();
     std::string known;
@@ -856,6 +1078,52 @@ double furnaceRadianceAll(const FurnaceParams& params)
     if (params.albedo >= 1.0f) return HUGE_VAL;
     const double rho = params.albedo, r = params.radius;
     return rho * params.intensity / (kPiDouble * r * r * (1.0 - rho));
+}
+
+Scene makeCaustics(const CausticsParams& params)
+{
+    require(params.ringRadius > 0.0f && params.ringHeight > 0.0f && params.ringSegments >= 2 &&
+                params.ringRoughness >= 0.0f && params.ringRoughness <= 1.0f,
+            "caustics: need ringRadius > 0, ringHeight > 0, ringSegments >= 2, ringRoughness in [0,1]");
+    Scene scene = newScene("caustics");
+    const int floorMaterial = addMaterial(scene, "floor", glm::vec3(0.75f));
+    const int ringMaterial = addMaterial(scene, "mirror_ring", glm::vec3(0.95f, 0.93f, 0.88f), params.ringRoughness,
+                                         1.0f);
+    scene.materials[static_cast<std::size_t>(ringMaterial)].metallic = 1.0f;
+
+    // 6 m x 6 m of floor in 0.5 m cells: about 600 triangles with the ring (VSGL's scene has 514).
+    constexpr float kFloorHalf = 3.0f;
+    Mesh floor = newMesh("floor", floorMaterial);
+    addRect(floor, glm::vec3(-kFloorHalf, 0.0f, -kFloorHalf), glm::vec3(0.0f, 0.0f, 2.0f * kFloorHalf),
+            glm::vec3(2.0f * kFloorHalf, 0.0f, 0.0f), 0.5f); // z cross x = +y
+    placeMesh(scene, std::move(floor));
+
+    // 200 degrees of ring centred on -z, open towards +z where the light stands, so that the light
+    // falls on its inside; 3 cm thick.
+    Mesh ring = newMesh("ring", ringMaterial);
+    const float halfArc = glm::radians(100.0f);
+    addRingWall(ring, glm::vec3(0.0f), params.ringRadius, 0.03f * params.ringRadius, params.ringHeight,
+                kPi - halfArc, kPi + halfArc, params.ringSegments);
+    placeMesh(scene, std::move(ring));
+
+    // The spot stands on the open side, 30-34 degrees above the far wall as seen from there. Seen
+    // from above, the far wall images the light (mirror equation, object distance 3.6 R) at
+    // 1 / (2/R - 1/(3.6 R)) = 0.58 R in front of the wall: the cusp of the caustic curve (a nephroid
+    // for parallel light). A ray reflected at height y keeps falling at 30 degrees and lands 1.7 y
+    // from the wall, so the floor receives the curve out to 1.7 x the wall height (1.04 R), past the cusp.
+    const float r = params.ringRadius;
+    scene.lights.push_back(makeSpotLight("spot", glm::vec3(0.0f, 2.4f * r, 2.6f * r),
+                                         glm::vec3(0.0f, 0.3f * r, -0.5f * r), glm::vec3(1.0f, 0.95f, 0.85f),
+                                         40.0f * r * r, 20.0f, 30.0f));
+
+    scene.cameras.push_back(makeCamera("default", glm::vec3(1.2f, 2.2f, 3.0f) * r, glm::vec3(0.0f, 0.1f, -0.4f) * r,
+                                       45.0f, 0.02f * r, 30.0f * r));
+    // Straight down onto the ring (image up = -z): the floor inside the ring in one view.
+    Camera top = makeCamera("top", glm::vec3(0.0f, 4.5f * r, 0.0f), glm::vec3(0.0f), 40.0f, 0.02f * r, 30.0f * r);
+    top.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.cameras.push_back(top);
+    scene.validate();
+    return scene;
 }
 
 } // namespace vplgi

@@ -1,4 +1,4 @@
-// Scenes vplgi generates itself (no external assets): cornell, furnace, maze, street.
+// Scenes vplgi generates itself (no external assets): caustics, cornell, furnace, glossy, maze, street.
 #pragma once
 
 #include <string>
@@ -27,5 +27,18 @@ Scene makeFurnace(const FurnaceParams& params);
 double furnaceRadianceBounce(const FurnaceParams& params, int n);
 // All bounces, L_all = rho I0 / (pi R^2 (1 - rho)).
 double furnaceRadianceAll(const FurnaceParams& params);
+
+// The caustics scene (VSGL Fig. 4): a near-mirror ring section (200 degrees of the inside of a
+// vertical cylinder, open towards the light) on a light grey Lambertian floor, lit from above at an
+// angle by the spot light "spot"; the ring focuses the light into a bright cardioid-like curve on
+// the floor inside it. Cameras "default" (oblique) and "top" (straight down, image up = -z).
+struct CausticsParams {
+    float ringRadius = 1.0f;    // inner radius [m], centred on the origin; the whole layout scales with it
+    float ringHeight = 0.6f;    // [m]
+    float ringRoughness = 0.1f; // perceptual, metallic 1: alpha = 0.01 (VSGL's Phong exponent 65535 is
+                                // alpha = sqrt(2 / 65537) = 0.0055); larger values blur the caustic
+    int ringSegments = 48;      // along the arc
+};
+Scene makeCaustics(const CausticsParams& params);
 
 } // namespace vplgi

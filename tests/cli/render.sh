@@ -35,7 +35,7 @@ print(total / (w * h * 3))
 PY
 }
 
-for scene in cornell furnace maze street; do
+for scene in caustics cornell furnace glossy maze street; do
   "$vplgi" render --scene "$scene" --width 96 --height 64 --out "$work/$scene.png" --quiet > "$work/$scene.log"
   grep -q "$work/$scene.png" "$work/$scene.log"
   mean=$(mean_of "$work/$scene.png")

@@ -1,7 +1,9 @@
 // Built-in scenes: validity, the measured Cornell data, the furnace's geometry and closed forms,
-// consistent winding, and the maze's and street's stated properties (size, occlusion, sun).
+// consistent winding, the maze's and street's stated properties (size, occlusion, sun), the
+// caustics scene's caustic (path tracer, one bounce) and the glossy scene's normal maps.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -11,7 +13,10 @@
 #include <glm/glm.hpp>
 
 #include "core/scene/builtin_scenes.h"
+#include "core/trace/path_tracer.h"
+#include "core/trace/ray_scene.h"
 #include "core/util/error.h"
+#include "measured.h"
 
 using namespace vplgi;
 
@@ -112,7 +117,7 @@ int materialIndex(const Scene& scene, const std::string& name)
 
 TEST_CASE("builtin scenes: names, validity, default camera, source")
 {
-    const std::vector<std::string> expected{"cornell", "furnace", "maze", "street"};
+    const std::vector<std::string> expected{"caustics", "cornell", "furnace", "glossy", "maze", "street"};
     REQUIRE(builtinSceneNames() == expected);
     CHECK_FALSE(isBuiltinScene("Cornell"));
     CHECK_FALSE(isBuiltinScene(""));
@@ -137,7 +142,7 @@ TEST_CASE("builtin scenes: unknown name throws Error naming the choices")
 {
     CHECK_THROWS_AS(makeBuiltinScene("nope"), Error);
     CHECK_THROWS_WITH(makeBuiltinScene("nope"),
-                      "unknown scene \"nope\" (built-in scenes: cornell, furnace, maze, street)");
+                      "unknown scene \"nope\" (built-in scenes: caustics, cornell, furnace, glossy, maze, street)");
 }
 
 TEST_CASE("builtin scenes: triangle winding agrees with the vertex normals")
@@ -177,6 +182,10 @@ TEST_CASE("builtin scenes: every surface seen from open space shows its front")
         {"cornell", {glm::vec3(-0.278f, 0.4f, -0.1f), glm::vec3(-0.1f, 0.1f, -0.5f)}},
         {"furnace", {glm::vec3(0.0f), glm::vec3(0.3f, -0.5f, 0.2f)}},
         {"street", {glm::vec3(0.0f, 10.0f, -60.0f), glm::vec3(-3.0f, 2.0f, 0.0f), glm::vec3(4.0f, 20.0f, 60.0f)}},
+        // Inside the ring, above its rim, outside it on the open and on the closed side.
+        {"caustics", {glm::vec3(0.0f, 0.3f, -0.3f), glm::vec3(0.2f, 1.0f, -0.9f), glm::vec3(0.5f, 0.4f, 1.5f),
+                      glm::vec3(-0.3f, 0.5f, -1.6f)}},
+        {"glossy", {glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(-4.0f, 3.5f, 3.0f), glm::vec3(4.5f, 0.3f, -3.5f)}},
         {"maze", {}},
     };
     // Street: above both rows of roofs.
@@ -542,4 +551,357 @@ TEST_CASE("street: the sun lights the -x side's facades and leaves the +x side i
     // The roofs are in the sun.
     const glm::vec3 above(0.0f, 45.0f, 0.0f);
     CHECK_FALSE(segmentBlocked(triangles, above, above + 300.0f * towardsSun));
+}
+
+namespace {
+
+const Mesh& meshNamed(const Scene& scene, const std::string& name)
+{
+    for (const Mesh& m : scene.meshes)
+        if (m.name == name) return m;
+    FAIL("no mesh " << name);
+    throw Error("unreachable");
+}
+
+// Whether a spot light's cone reaches point p (inside its outer cone) and nothing blocks the way.
+bool spotReaches(const Light& spot, const std::vector<Triangle>& triangles, const glm::vec3& p)
+{
+    const glm::vec3 towards = glm::normalize(p - spot.position);
+    return glm::dot(towards, glm::normalize(spot.direction)) > std::cos(spot.outerConeAngle) &&
+           !segmentBlocked(triangles, spot.position, p);
+}
+
+} // namespace
+
+TEST_CASE("caustics: a near-mirror ring open towards a spot light, on a grey floor")
+{
+    const CausticsParams params;
+    const Scene scene = makeBuiltinScene("caustics");
+    CHECK(scene.triangleCount() < 1000); // VSGL Fig. 4 has 514
+    REQUIRE(scene.lights.size() == 1);
+    const Light& spot = scene.lights[0];
+    CHECK(spot.name == "spot");
+    CHECK(spot.type == LightType::Spot);
+    CHECK(std::abs(glm::length(spot.direction) - 1.0f) < 1e-5f);
+    CHECK(spot.position.y > 2.0f * params.ringHeight); // from above ...
+    CHECK(spot.direction.y < -0.3f);
+    CHECK(spot.direction.y > -0.9f);                   // ... at an angle
+
+    const Material& ring = materialNamed(scene, "mirror_ring");
+    CHECK(ring.metallic == 1.0f);
+    CHECK(ring.roughness * ring.roughness == Approx(0.01f)); // alpha
+    const Material& floor = materialNamed(scene, "floor");
+    CHECK(floor.specular == 0.0f); // Lambertian, light grey
+    CHECK(floor.metallic == 0.0f);
+    CHECK(glm::vec3(floor.baseColor) == glm::vec3(0.75f));
+    CausticsParams rough;
+    rough.ringRoughness = 0.5f;
+    CHECK(materialNamed(makeCaustics(rough), "mirror_ring").roughness == 0.5f);
+
+    // Bounds: the floor is the widest part, the ring the tallest.
+    const AABB bounds = scene.worldBounds();
+    CHECK(bounds.lower.y == Approx(0.0f).margin(1e-6));
+    CHECK(bounds.upper.y == Approx(params.ringHeight));
+    CHECK(bounds.extent().x > 4.0f * params.ringRadius);
+    CHECK(bounds.extent().z > 4.0f * params.ringRadius);
+
+    // The ring's inner face: its vertex normals point at the axis, and the spot light reaches most
+    // of it from the front. (The ends of the 200-degree arc, turned edge-on to the light, stay dark.)
+    const Mesh& ringMesh = meshNamed(scene, "ring");
+    int innerVertices = 0;
+    for (const Vertex& v : ringMesh.vertices) {
+        const glm::vec3 horizontal(v.position.x, 0.0f, v.position.z);
+        // Not the rim (facing up) nor the arc's ends (facing along the arc).
+        if (std::abs(glm::length(horizontal) - params.ringRadius) > 1e-4f || v.normal.y != 0.0f ||
+            std::abs(glm::dot(v.normal, glm::normalize(horizontal))) < 0.5f)
+            continue;
+        ++innerVertices;
+        CHECK(glm::dot(v.normal, glm::normalize(horizontal)) == Approx(-1.0f));
+    }
+    CHECK(innerVertices == 2 * (params.ringSegments + 1));
+    const std::vector<Triangle> triangles = worldTriangles(scene);
+    int samples = 0, lit = 0;
+    for (int i = 0; i <= 40; ++i) {
+        const double phi = kPi * (80.0 + 200.0 * i / 40.0) / 180.0; // the arc, as ringDirection turns
+        const glm::vec3 direction(static_cast<float>(std::sin(phi)), 0.0f, static_cast<float>(std::cos(phi)));
+        for (float height : {0.25f, 0.5f, 0.75f}) {
+            // 1% of the radius inside the faceted face (its chords sag by 0.07%).
+            const glm::vec3 p = 0.99f * params.ringRadius * direction + glm::vec3(0.0f, height * params.ringHeight, 0.0f);
+            ++samples;
+            lit += glm::dot(-direction, spot.position - p) > 0.0f && spotReaches(spot, triangles, p) ? 1 : 0;
+        }
+    }
+    INFO(lit << " of " << samples << " points on the inner face lit");
+    CHECK(lit * 10 >= samples * 7);
+
+    // The floor inside the ring is lit and both cameras see it.
+    const glm::vec3 inside(0.0f, 0.0f, -0.4f * params.ringRadius);
+    CHECK(spotReaches(spot, triangles, inside + glm::vec3(0.0f, 1e-3f, 0.0f)));
+    for (const Camera& camera : scene.cameras) {
+        INFO(camera.name);
+        CHECK_FALSE(segmentBlocked(triangles, camera.position, inside + glm::vec3(0.0f, 1e-3f, 0.0f)));
+    }
+    REQUIRE(scene.findCamera("top") != nullptr);
+}
+
+namespace {
+
+struct CausticMeasure {
+    double insideMean = 0;  // mean one-bounce luminance of floor pixels inside the ring [W/(m^2 sr)]
+    double outsideMean = 0; // ... of floor pixels around it (1.3 R to 2 R from the axis)
+    double brightShare = 0; // share of the inside's one-bounce light in its brightest tenth of pixels
+    glm::vec2 brightCentre{0}; // floor (x, z) of the brightest tenth's centre of light [m]
+};
+
+// The path tracer's OneBounce mode (light -> ring -> floor -> eye) through the "top" camera; pixels
+// are sorted by the floor point their centre sees (pixels that see the ring are left out).
+CausticMeasure measureCaustic(const CausticsParams& params, int size, int spp)
+{
+    const Scene scene = makeCaustics(params);
+    const RayScene rays(scene);
+    const Camera& camera = *scene.findCamera("top");
+    PathTracerParams tracer;
+    tracer.mode = PathTracerParams::Mode::OneBounce;
+    tracer.spp = spp;
+    tracer.seed = 7;
+    const ImageRGBA32F image = renderReference(scene, rays, camera, size, size, tracer).image;
+    auto luminance = [&](int x, int y) {
+        const float* p = image.at(x, y);
+        return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    };
+
+    const CameraRays cameraRays(camera, size, size);
+    int floorMesh = -1;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        if (scene.meshes[m].name == "floor") floorMesh = static_cast<int>(m);
+    struct FloorPixel {
+        double value;
+        glm::vec2 at; // floor (x, z) [m]
+    };
+    std::vector<FloorPixel> inside;
+    double insideSum = 0, outsideSum = 0;
+    int outsideCount = 0;
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const Ray ray = cameraRays.at(x + 0.5, y + 0.5);
+            const Hit hit = rays.intersect(ray);
+            if (!hit.valid() || scene.instances[hit.instance].mesh != floorMesh) continue;
+            const glm::vec3 p = ray.origin + hit.t * ray.direction;
+            const float r = glm::length(glm::vec2(p.x, p.z)) / params.ringRadius;
+            const double value = luminance(x, y);
+            if (r < 0.9f) {
+                inside.push_back({value, glm::vec2(p.x, p.z)});
+                insideSum += value;
+            } else if (r > 1.3f && r < 2.0f) {
+                outsideSum += value;
+                ++outsideCount;
+            }
+        }
+    }
+    REQUIRE(inside.size() > 100);
+    REQUIRE(outsideCount > 100);
+    CausticMeasure measure;
+    measure.insideMean = insideSum / static_cast<double>(inside.size());
+    measure.outsideMean = outsideSum / outsideCount;
+    std::sort(inside.begin(), inside.end(), [](const FloorPixel& a, const FloorPixel& b) { return a.value > b.value; });
+    double brightSum = 0;
+    glm::dvec2 weighted(0.0);
+    for (std::size_t i = 0; i < inside.size() / 10; ++i) {
+        brightSum += inside[i].value;
+        weighted += inside[i].value * glm::dvec2(inside[i].at);
+    }
+    measure.brightShare = brightSum / insideSum;
+    measure.brightCentre = glm::vec2(weighted / brightSum);
+    return measure;
+}
+
+} // namespace
+
+TEST_CASE("caustics: the ring focuses one-bounce light into a curve on the floor inside it (path tracer)",
+          "[path_tracer][numbers]")
+{
+    const CausticsParams mirror;
+    CausticsParams rough = mirror;
+    rough.ringRoughness = 0.5f;
+    const CausticMeasure sharp = measureCaustic(mirror, 64, 1024);
+    const CausticMeasure blurred = measureCaustic(rough, 64, 1024);
+    MEASURED("caustics, one-bounce luminance on the floor (64x64 top view, 1024 spp): roughness 0.1: inside "
+             << sharp.insideMean << ", outside " << sharp.outsideMean << ", brightest tenth's share "
+             << sharp.brightShare << ", its centre at (" << sharp.brightCentre.x << ", " << sharp.brightCentre.y
+             << "); roughness 0.5: inside " << blurred.insideMean << ", share " << blurred.brightShare);
+    // Measured over seeds 1-5 and 7: inside / outside >= 99 (outside: a few stray reflections off
+    // the arc's ends, the noisiest number here); the brightest tenth's share 0.74-0.77 (a uniform
+    // floor gives 0.1), 0.36 with the rough ring; its centre within 0.04 m of x = 0 (the scene is
+    // symmetric about x = 0) and at z = -0.54 to -0.57 m, between the cusp (z = -0.42 m by the mirror
+    // equation, see makeCaustics) and the far wall. The bounds leave at least 3x those spreads.
+    CHECK(sharp.insideMean > 30.0 * sharp.outsideMean);
+    CHECK(sharp.brightShare > 0.6);
+    CHECK(blurred.brightShare < 0.45);
+    CHECK(std::abs(sharp.brightCentre.x) < 0.1f);
+    CHECK(sharp.brightCentre.y > -0.655f);
+    CHECK(sharp.brightCentre.y < -0.455f);
+}
+
+TEST_CASE("glossy: a closed room with glossy and diffuse coloured surfaces, lit by a spot light")
+{
+    const Scene scene = makeBuiltinScene("glossy");
+    CHECK(scene.triangleCount() >= 2000);
+    CHECK(scene.triangleCount() <= 50000);
+
+    // 10 m x 4 m x 8 m, closed on all six sides around its centre (the objects stand elsewhere).
+    const AABB bounds = scene.worldBounds();
+    CHECK(bounds.lower.x == Approx(-5.0f));
+    CHECK(bounds.upper.x == Approx(5.0f));
+    CHECK(bounds.lower.y == Approx(0.0f).margin(1e-6));
+    CHECK(bounds.upper.y == Approx(4.0f));
+    CHECK(bounds.lower.z == Approx(-4.0f));
+    CHECK(bounds.upper.z == Approx(4.0f));
+    const std::vector<Triangle> triangles = worldTriangles(scene);
+    const glm::vec3 centre(0.0f, 2.0f, 0.0f);
+    for (const glm::vec3& away :
+         {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),
+          glm::vec3(0, 0, -1)}) {
+        INFO("direction " << away.x << " " << away.y << " " << away.z);
+        CHECK(segmentBlocked(triangles, centre, centre + 20.0f * away));
+    }
+
+    // Lights: spot or directional only (the RSM-based techniques need them); here one spot inside
+    // the room, aimed down, reaching the floor's centre.
+    REQUIRE(scene.lights.size() == 1);
+    for (const Light& light : scene.lights) {
+        INFO(light.name);
+        CHECK(light.type != LightType::Point);
+    }
+    const Light& spot = scene.lights[0];
+    CHECK(spot.name == "spot");
+    CHECK(spot.type == LightType::Spot);
+    CHECK(std::abs(glm::length(spot.direction) - 1.0f) < 1e-5f);
+    CHECK(spot.direction.y < -0.5f);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(spot.position[c] > bounds.lower[c] + 0.3f);
+        CHECK(spot.position[c] < bounds.upper[c] - 0.3f);
+    }
+    CHECK(spotReaches(spot, triangles, glm::vec3(0.0f, 1e-3f, 0.0f)));
+
+    // Cameras inside the room, seeing its centre.
+    REQUIRE(scene.cameras.size() >= 2);
+    for (const Camera& camera : scene.cameras) {
+        INFO(camera.name);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(camera.position[c] > bounds.lower[c]);
+            CHECK(camera.position[c] < bounds.upper[c]);
+        }
+        CHECK_FALSE(segmentBlocked(triangles, camera.position, glm::vec3(0.0f, 1.0f, 0.0f)));
+    }
+
+    // Glossy (roughness 0.2-0.35: VSGL's Phong exponent 1023 is roughness 0.21) and diffuse
+    // coloured materials, nothing emissive.
+    int glossy = 0, colouredDiffuse = 0;
+    for (const Material& m : scene.materials) {
+        INFO(m.name);
+        CHECK_FALSE(m.isEmissive());
+        const glm::vec3 albedo(m.baseColor);
+        if (m.specular > 0.0f || m.metallic > 0.0f) {
+            ++glossy;
+            CHECK(m.roughness >= 0.2f);
+            CHECK(m.roughness <= 0.35f);
+        } else if (std::max({albedo.r, albedo.g, albedo.b}) > 2.0f * std::min({albedo.r, albedo.g, albedo.b})) {
+            ++colouredDiffuse;
+        }
+    }
+    CHECK(glossy >= 3);
+    CHECK(colouredDiffuse >= 2);
+
+    // The same scene on every call (the normal maps included).
+    const Scene again = makeBuiltinScene("glossy");
+    REQUIRE(again.images.size() == scene.images.size());
+    for (std::size_t i = 0; i < scene.images.size(); ++i) CHECK(again.images[i].rgba == scene.images[i].rgba);
+}
+
+TEST_CASE("glossy: normal maps decode to unit normals that tilt both ways and average to flat, tangents follow u")
+{
+    const Scene scene = makeBuiltinScene("glossy");
+    int normalMapped = 0;
+    std::vector<bool> checkedImage(scene.images.size(), false);
+    for (std::size_t mi = 0; mi < scene.materials.size(); ++mi) {
+        const Material& m = scene.materials[mi];
+        if (!m.normalTexture.valid()) continue;
+        INFO(m.name);
+        ++normalMapped;
+        CHECK(m.specular > 0.0f); // normal maps on the glossy surfaces
+        CHECK(m.normalScale == 1.0f);
+        REQUIRE(m.normalTexture.image < static_cast<int>(scene.images.size()));
+
+        // Every mesh with the material carries tangents: unit, perpendicular to the normal, along
+        // the texcoord u direction of its triangles (dP/du, brute force per triangle), w = +-1.
+        int meshes = 0;
+        for (const Mesh& mesh : scene.meshes) {
+            if (mesh.material != static_cast<int>(mi)) continue;
+            INFO(mesh.name);
+            ++meshes;
+            CHECK(mesh.hasTangents);
+            std::size_t bad = 0;
+            for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+                const Vertex& a = mesh.vertices[mesh.indices[3 * t]];
+                const Vertex& b = mesh.vertices[mesh.indices[3 * t + 1]];
+                const Vertex& c = mesh.vertices[mesh.indices[3 * t + 2]];
+                const glm::vec3 e1 = b.position - a.position, e2 = c.position - a.position;
+                const glm::vec2 d1 = b.texcoord - a.texcoord, d2 = c.texcoord - a.texcoord;
+                const float det = d1.x * d2.y - d2.x * d1.y;
+                const glm::vec3 dPdu = glm::normalize((e1 * d2.y - e2 * d1.y) / det);
+                const glm::vec3 dPdv = glm::normalize((e2 * d1.x - e1 * d2.x) / det);
+                for (const Vertex* v : {&a, &b, &c}) {
+                    const glm::vec3 tangent(v->tangent);
+                    const glm::vec3 bitangent = glm::cross(v->normal, tangent) * v->tangent.w;
+                    const bool ok = std::abs(glm::length(tangent) - 1.0f) < 1e-4f &&
+                                    std::abs(glm::dot(tangent, v->normal)) < 1e-4f &&
+                                    std::abs(v->tangent.w) == 1.0f && glm::dot(tangent, dPdu) > 0.999f &&
+                                    glm::dot(bitangent, dPdv) > 0.999f;
+                    bad += ok ? 0 : 1;
+                }
+            }
+            CHECK(bad == 0);
+        }
+        CHECK(meshes >= 1);
+
+        // The map itself, once per image.
+        if (checkedImage[m.normalTexture.image]) continue;
+        checkedImage[m.normalTexture.image] = true;
+        const Image& image = scene.images[m.normalTexture.image];
+        INFO(image.name);
+        REQUIRE(image.width >= 64);
+        REQUIRE(image.rgba.size() == static_cast<std::size_t>(image.width) * image.height * 4);
+        glm::dvec3 sum(0.0);
+        double worstLength = 0, minZ = 1, minX = 0, maxX = 0, minY = 0, maxY = 0;
+        for (std::size_t p = 0; p < image.rgba.size(); p += 4) {
+            const glm::dvec3 n = glm::dvec3(image.rgba[p], image.rgba[p + 1], image.rgba[p + 2]) / 255.0 * 2.0 - 1.0;
+            sum += n;
+            worstLength = std::max(worstLength, std::abs(glm::length(n) - 1.0));
+            minZ = std::min(minZ, n.z);
+            minX = std::min(minX, n.x);
+            maxX = std::max(maxX, n.x);
+            minY = std::min(minY, n.y);
+            maxY = std::max(maxY, n.y);
+            CHECK(image.rgba[p + 3] == 255);
+        }
+        const glm::dvec3 mean = sum / (static_cast<double>(image.width) * image.height);
+        MEASURED(image.name << ": worst | |n| - 1 | " << worstLength << ", mean n (" << mean.x << ", " << mean.y
+                            << ", " << mean.z << "), min z " << minZ << ", x in [" << minX << ", " << maxX
+                            << "], y in [" << minY << ", " << maxY << "]");
+        // 8-bit quantization moves each component by at most 1/255 (0.004): |n| stays within
+        // sqrt(3) * 0.004 = 0.007 of 1.
+        CHECK(worstLength < 0.007);
+        // A periodic height field's mean slope is zero, so the mean x and y vanish but for the
+        // quantization: flat texels (n.x = 0) encode 127.5, stored as 128, decoded as +0.0039 (by GL
+        // too). Measured 0.0034 (tiles) and 0.0019 (bumps); 0.01 (0.6 degrees) is about 3x that.
+        CHECK(std::abs(mean.x) < 0.01);
+        CHECK(std::abs(mean.y) < 0.01);
+        // Visible relief: normals tilt by more than 20 degrees both ways along both axes, none past 45.
+        CHECK(minX < -0.34);
+        CHECK(maxX > 0.34);
+        CHECK(minY < -0.34);
+        CHECK(maxY > 0.34);
+        CHECK(minZ > 0.7);
+    }
+    CHECK(normalMapped >= 2);
 }
