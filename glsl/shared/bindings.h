@@ -27,10 +27,16 @@ VPLGI_CONST int kBindingShadowAtlasDraw = 10;    // SSBO int[] (tile index per i
 VPLGI_CONST int kBindingVPLs = 11;               // SSBO GpuVPL[] (glsl/shared/vpl.h), one per slot
 VPLGI_CONST int kBindingVPLBatch = 12;           // SSBO VPLBatchItem[]: the VPLs whose maps are being resampled
 
+// Storage buffers of the imperfect shadow maps (gl/passes/imperfect_shadow_maps).
+VPLGI_CONST int kBindingISMPoints = 13;          // SSBO vec4[]: the scene's surface points (xyz)
+VPLGI_CONST int kBindingISMLights = 14;          // SSBO vec4[]: the lights' records (position+valid, normal, ...)
+
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
 VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)
 VPLGI_CONST int kImageVPLShadowMaps = 6; // r32f 2D array: the VPL paraboloid maps being written
+VPLGI_CONST int kImageISMMaps = 6;    // ISM maps (r32f seen as r32ui): the level being splatted, pulled from or pushed
+VPLGI_CONST int kImageISMCoarser = 7; // ISM maps (r32f seen as r32ui): the next coarser level
 
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;
@@ -50,6 +56,7 @@ VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), af
 VPLGI_CONST int kUnitVPLShadowMaps = 19; // VPL paraboloid maps: distance [m] (sampler2DArray, r32f)
 VPLGI_CONST int kUnitDisplayView = 20; // renderer.display's texture view (sampler2DArray; passes/tonemap.frag)
 VPLGI_CONST int kUnitBilateralInput = 21; // unfiltered radiance read by passes/bilateral_filter.frag
+VPLGI_CONST int kUnitISM = 22; // imperfect shadow maps: distance [m] (sampler2DArray, r32f; gl/passes/imperfect_shadow_maps)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
