@@ -1,6 +1,7 @@
 #include "imperfect_shadow_maps.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -106,7 +107,6 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
 
 void ImperfectShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
 {
-    mClear = ComputePass(shaders, "ISM clear", "passes/ism_clear.comp");
     mSplat = ComputePass(shaders, "ISM splat", "passes/ism_splat.comp");
     mPull = ComputePass(shaders, "ISM pull", "passes/ism_pull.comp");
     mPush = ComputePass(shaders, "ISM push", "passes/ism_push.comp");
@@ -134,15 +134,10 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
                 " vec4s exceed the light buffer (" + std::to_string(lights.size()) + " bytes)");
     if (count == 0) return;
     gl::DebugGroup group("imperfect shadow maps");
-    const int texels = mParams.mapSize * mParams.mapSize;
+
+    clearMaps(count, timer);
 
     bindMapsAsUint(shared::kImageISMMaps, mMaps, GL_READ_WRITE, 0);
-    const gl::Program& clear = mClear.program();
-    clear.set("uCount", count);
-    clear.set("uMapSize", mParams.mapSize);
-    clear.set("uTilesPerRow", mLayout.tilesPerRow);
-    mClear.dispatch(glm::ivec3(texels, count, 1), NextRead::Image, timer);
-
     bindStorageBuffer(shared::kBindingISMPoints, mPoints);
     bindStorageBuffer(shared::kBindingISMLights, lights);
     const gl::Program& splat = mSplat.program();
@@ -155,6 +150,25 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     mSplat.dispatch(glm::ivec3(mParams.pointsPerMap, count, 1), NextRead::Image | NextRead::TextureFetch, timer);
 
     fillHoles(count, timer);
+}
+
+void ImperfectShadowMaps::clearMaps(int count, gl::PassTimer* timer) const
+{
+    // Tiles 0 .. count-1 fill whole layers, then whole rows of the next layer, then part of one row:
+    // at most three rectangles. On llvmpipe this took 1 ms for 1024 maps of 64^2, a clearing kernel 37 ms.
+    std::optional<gl::PassTimer::Scope> scope;
+    if (timer) scope.emplace(*timer, "ISM clear");
+    const float none = shared::kVPLNoOccluder;
+    const int n = mLayout.tilesPerRow, size = mParams.mapSize, perLayer = n * n;
+    const int layers = count / perLayer, rows = (count % perLayer) / n, rest = count % n;
+    auto clear = [&](int x, int y, int layer, int width, int height, int depth) {
+        if (width > 0 && height > 0 && depth > 0)
+            glClearTexSubImage(mMaps.id(), 0, x * size, y * size, layer, width * size, height * size, depth, GL_RED,
+                               GL_FLOAT, &none);
+    };
+    clear(0, 0, 0, n, n, layers);
+    clear(0, 0, layers, n, rows, 1);
+    clear(0, rows, layers, rest, 1, 1);
 }
 
 void ImperfectShadowMaps::fillHoles(int count, gl::PassTimer* timer)

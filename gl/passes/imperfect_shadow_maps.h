@@ -44,14 +44,15 @@
 //  tilesPerRow, level l of the atlas is every tile's level l in place. A hole larger than about
 //  2^pullPushLevels texels stays empty (log2(mapSize) fills every hole of a map with any point).
 //  Defaults measured in the Cornell box against Embree (tests/gl/test_imperfect_shadow_maps.cpp,
-//  64 lights on the surfaces x 552 receivers): pull-push cuts the light leak of the holes (mean
-//  visible fraction +0.044 too high without, +0.008 with 4 levels) at the price of a few more
-//  false shadows; 2, 4 and 6 levels differ little there, 4 leaves directions with no surface
-//  within 16 texels (sky) empty. A plain average in pull-push (depth range -> infinity) did a
-//  little better than ignoring texels beyond 1.1x or 2x the nearest (holes on surfaces seen at
-//  grazing angles took too near a distance); 3 (4x) still keeps a hole at a depth edge with the
-//  foreground. Depth bias 0.1 rather than SMCIR's 0.02: hole-filled distances are averages over a
-//  few texels (0.02 gave 0.018 more false shadows of the pairs, 0.2 0.007 more leaks).
+//  64 lights on the surfaces x 552 receivers; "mean" = the mean over receivers of the visible
+//  fraction of their lights, ISM minus Embree): pull-push cuts the light leak of the holes (mean
+//  +0.044 without, +0.008 with 4 levels) for a few more false shadows; 2, 4 and 6 levels differ
+//  little there, and 4 leaves directions with no surface within about 16 texels (sky) empty.
+//  Depth range: ignoring texels beyond 1.1x the nearest gave a mean of -0.053 (holes on surfaces
+//  seen at grazing angles took too near a distance), 2x -0.012, 4x (3) +0.008, a plain average
+//  +0.012; 4x still gives a hole on a depth edge the foreground's distance. Depth bias 0.1 rather
+//  than SMCIR's 0.02 (a mean of -0.021: hole-filled distances are averages over a few texels);
+//  0.2 leaks (+0.027).
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB
@@ -120,6 +121,8 @@ public:
     int maxLights() const { return mMaxLights; }
 
 private:
+    void clearMaps(int count, gl::PassTimer* timer) const; // level 0 of lights 0 .. count-1: no occluder
+
     ISMParams mParams;
     int mMaxLights = 0;
     ShadowAtlasLayout mLayout;
@@ -127,7 +130,6 @@ private:
     gl::Sampler mSampler;
     gl::Buffer mPoints;
     int mPointCount = 0;
-    ComputePass mClear;
     ComputePass mSplat;
     ComputePass mPull;
     ComputePass mPush;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <random>
 #include <vector>
 
@@ -458,6 +459,16 @@ TEST_CASE("ISM: the maps are bit-identical run to run", "[gl][ism][determinism]"
     const std::vector<float> c = render(second);
     CHECK(test::firstBitDifference(a, b) == -1);
     CHECK(test::firstBitDifference(a, c) == -1);
+    // tests/gl/ism_threads.sh runs this test under LP_NUM_THREADS=1 and 2 and compares the files.
+    if (const char* file = std::getenv("VPLGI_ISM_HASH_FILE")) {
+        std::uint64_t hash = 14695981039346656037ull; // FNV-1a over the maps' bytes
+        const auto* bytes = reinterpret_cast<const unsigned char*>(a.data());
+        for (std::size_t i = 0; i < a.size() * sizeof(float); ++i)
+            hash = (hash ^ bytes[i]) * 1099511628211ull;
+        std::ofstream out(file);
+        out << std::hex << hash << "\n";
+        REQUIRE(out.good());
+    }
     // Inside the closed box every direction of the hemisphere meets a wall, and pull-push fills the
     // holes up to 2^4 texels across: only a few texels whose centre lies in the paraboloid's disk stay
     // empty (measured: 71 of 32 x 3216, in large holes at the rim; 54883 without pull-push, 11823 with 2 levels).
