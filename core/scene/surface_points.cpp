@@ -47,8 +47,7 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
         // Triangle by area: the first whose inclusive prefix sum exceeds u * total.
         const double target = static_cast<double>(rng.uniform()) * points.totalArea;
         const auto it = std::upper_bound(cumulativeArea.begin(), cumulativeArea.end(), target);
-        const std::size_t index =
-            std::min(static_cast<std::size_t>(it - cumulativeArea.begin()), triangles.size() - 1);
+        const std::size_t index = std::min(static_cast<std::size_t>(it - cumulativeArea.begin()), triangles.size() - 1);
         const WorldTriangle& tri = triangles[index];
         // Uniform barycentrics (square-root warp; Turk 1990, pbrt's SampleUniformTriangle).
         const float su = std::sqrt(rng.uniform());

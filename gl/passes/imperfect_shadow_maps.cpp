@@ -61,8 +61,8 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
     require(params.points >= 1 && params.points <= (1 << 24),
             name + "points " + std::to_string(params.points) + " outside [1, 2^24]");
     require(params.pointsPerMap >= 1 && params.pointsPerMap <= params.points,
-            name + "points per map " + std::to_string(params.pointsPerMap) + " outside [1, points = " +
-                std::to_string(params.points) + "]");
+            name + "points per map " + std::to_string(params.pointsPerMap) +
+                " outside [1, points = " + std::to_string(params.points) + "]");
     require(params.pullPushDepthRange >= 0.0f && params.depthBias >= 0.0f && params.normalOffset >= 0.0f,
             name + "pull-push depth range, depth bias and normal offset must be >= 0");
     require(maxLights >= 1, name + "maxLights must be >= 1 (got " + std::to_string(maxLights) + ")");
@@ -126,8 +126,8 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
 void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, gl::PassTimer* timer)
 {
     require(mPointCount > 0, "imperfect shadow maps: update() before setScene()");
-    require(count >= 0 && count <= mMaxLights, "imperfect shadow maps: " + std::to_string(count) +
-                                                   " lights, at most " + std::to_string(mMaxLights));
+    require(count >= 0 && count <= mMaxLights,
+            "imperfect shadow maps: " + std::to_string(count) + " lights, at most " + std::to_string(mMaxLights));
     require(strideVec4 >= 2, "imperfect shadow maps: light stride " + std::to_string(strideVec4) + " < 2 vec4s");
     require(static_cast<std::int64_t>(count) * strideVec4 * 16 <= lights.size(),
             "imperfect shadow maps: " + std::to_string(count) + " lights x " + std::to_string(strideVec4) +
@@ -147,7 +147,9 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uPointCount", mPointCount);
     splat.set("uMapSize", mParams.mapSize);
     splat.set("uTilesPerRow", mLayout.tilesPerRow);
-    mSplat.dispatch(glm::ivec3(mParams.pointsPerMap, count, 1), NextRead::Image | NextRead::TextureFetch, timer);
+    // Pull reads the splat next; without pull-push the shading pass (or a test's readback) does.
+    mSplat.dispatch(glm::ivec3(mParams.pointsPerMap, count, 1),
+                    NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
 
     fillHoles(count, timer);
 }
@@ -196,10 +198,9 @@ void ImperfectShadowMaps::fillHoles(int count, gl::PassTimer* timer)
         bindMapsAsUint(shared::kImageISMMaps, mMaps, GL_READ_WRITE, level);
         bindMapsAsUint(shared::kImageISMCoarser, mMaps, GL_READ_ONLY, level + 1);
         mPush.program().set("uCoarseSize", coarseSize);
-        mPush.dispatch(glm::ivec3(4 * coarseSize * coarseSize, count, 1),
-                       level == 0 ? NextRead::TextureFetch | NextRead::Image | NextRead::TextureReadback
-                                  : NextRead::Image,
-                       timer);
+        mPush.dispatch(
+            glm::ivec3(4 * coarseSize * coarseSize, count, 1),
+            level == 0 ? NextRead::TextureFetch | NextRead::Image | NextRead::TextureReadback : NextRead::Image, timer);
     }
 }
 

@@ -47,8 +47,7 @@ VPLGI_FUNC ivec3 ismMapTexel(int light, vec3 directionLight, int mapSize, int ti
 // The texel a scene point is splatted into, or ivec3(-1) when the point is behind the light's
 // tangent plane (or within kISMHorizonCosine of it, or at the light itself). `lightFrame` =
 // lightViewBasis(the light's normal).
-VPLGI_FUNC ivec3 ismSplatTexel(int light, vec3 lightPosition, mat3 lightFrame, vec3 point, int mapSize,
-                               int tilesPerRow)
+VPLGI_FUNC ivec3 ismSplatTexel(int light, vec3 lightPosition, mat3 lightFrame, vec3 point, int mapSize, int tilesPerRow)
 {
     vec3 toPoint = point - lightPosition;
     float distance = length(toPoint);

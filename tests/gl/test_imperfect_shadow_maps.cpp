@@ -105,8 +105,8 @@ std::vector<float> readMap(const ImperfectShadowMaps& ism, int light, int level 
     const int size = ism.params().mapSize >> level;
     const glm::ivec3 tile = shared::shadowAtlasTileFromIndex(light, ism.layout().tilesPerRow);
     std::vector<float> map(static_cast<std::size_t>(size) * size);
-    glGetTextureSubImage(ism.maps().id(), level, tile.x * size, tile.y * size, tile.z, size, size, 1, GL_RED,
-                         GL_FLOAT, static_cast<GLsizei>(map.size() * sizeof(float)), map.data());
+    glGetTextureSubImage(ism.maps().id(), level, tile.x * size, tile.y * size, tile.z, size, size, 1, GL_RED, GL_FLOAT,
+                         static_cast<GLsizei>(map.size() * sizeof(float)), map.data());
     return map;
 }
 
@@ -187,13 +187,13 @@ std::vector<LightRecord> surfaceLights(const Scene& scene, int count, std::uint6
 }
 
 struct Agreement {
-    int pairs = 0;               // (receiver, light) pairs facing each other (G > 0)
-    double disagreement = 0.0;   // fraction of those where ISM and Embree differ
-    double fractionError = 0.0;  // mean over receivers of |ISM - Embree| visible fraction of its lights
-    double fractionBias = 0.0;   // mean over receivers of (ISM - Embree) visible fraction: > 0 leaks light
-    double embreeVisible = 0.0;  // fraction of pairs Embree sees as visible
-    double falseLit = 0.0;       // fraction of pairs ISM sees lit and Embree occluded
-    double falseShadow = 0.0;    // fraction of pairs ISM sees shadowed and Embree visible
+    int pairs = 0;              // (receiver, light) pairs facing each other (G > 0)
+    double disagreement = 0.0;  // fraction of those where ISM and Embree differ
+    double fractionError = 0.0; // mean over receivers of |ISM - Embree| visible fraction of its lights
+    double fractionBias = 0.0;  // mean over receivers of (ISM - Embree) visible fraction: > 0 leaks light
+    double embreeVisible = 0.0; // fraction of pairs Embree sees as visible
+    double falseLit = 0.0;      // fraction of pairs ISM sees lit and Embree occluded
+    double falseShadow = 0.0;   // fraction of pairs ISM sees shadowed and Embree visible
 };
 
 Agreement compareWithEmbree(const RayScene& rays, const std::vector<LightRecord>& lights,
@@ -300,13 +300,13 @@ TEST_CASE("ISM: visibility in the Cornell box against Embree rays", "[gl][ism][n
         ImperfectShadowMaps ism(test::shaders(), params, lightCount);
         ism.setScene(scene);
         ism.update(lightBuffer, lightCount, 2);
-        const Agreement a = compareWithEmbree(rays, lights, receivers,
-                                              probeVisibility(ism, lightBuffer, lightCount, receivers));
+        const Agreement a =
+            compareWithEmbree(rays, lights, receivers, probeVisibility(ism, lightBuffer, lightCount, receivers));
         std::printf("ISM vs Embree, cornell, 64 surface lights x %zu camera receivers (%d facing pairs, %.3f "
                     "visible), 8192 points, 64^2, pull-push levels %d: pairs disagreeing %.4f, mean |visible "
                     "fraction error| per receiver %.4f, mean signed %+.4f (false lit %.4f, false shadow %.4f)\n",
-                    receivers.size(), a.pairs, a.embreeVisible, levels, a.disagreement, a.fractionError,
-                    a.fractionBias, a.falseLit, a.falseShadow);
+                    receivers.size(), a.pairs, a.embreeVisible, levels, a.disagreement, a.fractionError, a.fractionBias,
+                    a.falseLit, a.falseShadow);
         if (levels == ISMParams{}.pullPushLevels) atDefault = a;
         if (levels == 0) withoutFilling = a;
     }
@@ -346,8 +346,8 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
         for (int k = 0; k < params.pointsPerMap; ++k) {
             const auto start = static_cast<std::uint32_t>(light) * static_cast<std::uint32_t>(params.pointsPerMap) %
                                static_cast<std::uint32_t>(params.points);
-            const glm::vec3 p = points.positions[(start + static_cast<std::uint32_t>(k)) %
-                                                 static_cast<std::uint32_t>(params.points)];
+            const glm::vec3 p =
+                points.positions[(start + static_cast<std::uint32_t>(k)) % static_cast<std::uint32_t>(params.points)];
             const glm::ivec3 texel = shared::ismSplatTexel(light, y, frame, p, size, tilesPerRow);
             if (texel.x < 0) continue;
             float& e = expected[static_cast<std::size_t>((texel.y - tile.y * size) * size + texel.x - tile.x * size)];
@@ -419,8 +419,8 @@ TEST_CASE("ISM: pull-push fills holes as its CPU twin does", "[gl][ism]")
     }
     std::printf("ISM pull-push vs CPU twin (5 maps of 16^2, 4 levels): largest difference %.3g m\n",
                 static_cast<double>(largest));
-    CHECK(changedValid == 0);    // valid texels keep their bits
-    CHECK(largest <= 0.0f);      // measured 0: the same operations in the same order
+    CHECK(changedValid == 0); // valid texels keep their bits
+    CHECK(largest <= 0.0f);   // measured 0: the same operations in the same order
     // Closed forms: a constant map stays that constant everywhere (every average of equal values
     // with these weights is exact); an empty map stays empty; one valid texel fills the whole map;
     // the hole on the depth edge takes the foreground's 1 m on both sides of the edge, not a blend.
