@@ -16,6 +16,9 @@ namespace vplgi {
 
 namespace {
 
+// Points one splat invocation handles (passes/ism_splat.comp ISM_POINTS_PER_INVOCATION).
+constexpr int kSplatPointsPerInvocation = 8;
+
 int log2Exact(int n)
 {
     int l = 0;
@@ -107,7 +110,8 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
 
 void ImperfectShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
 {
-    mSplat = ComputePass(shaders, "ISM splat", "passes/ism_splat.comp");
+    mSplat = ComputePass(shaders, "ISM splat", "passes/ism_splat.comp",
+                         {"ISM_POINTS_PER_INVOCATION=" + std::to_string(kSplatPointsPerInvocation)});
     mPull = ComputePass(shaders, "ISM pull", "passes/ism_pull.comp");
     mPush = ComputePass(shaders, "ISM push", "passes/ism_push.comp");
 }
@@ -148,7 +152,8 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uMapSize", mParams.mapSize);
     splat.set("uTilesPerRow", mLayout.tilesPerRow);
     // Pull reads the splat next; without pull-push the shading pass (or a test's readback) does.
-    mSplat.dispatch(glm::ivec3(mParams.pointsPerMap, count, 1),
+    const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;
+    mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
                     NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
 
     fillHoles(count, timer);

@@ -54,8 +54,9 @@
 //  +0.012; 4x still gives a hole on a depth edge the foreground's distance. Depth bias 0.1 rather
 //  than SMCIR's 0.02 (a mean of -0.021: hole-filled distances are averages over a few texels);
 //  0.2 leaks (+0.027).
-//  Cost: update() of 1024 lights x 8192 points at 64^2 took 0.3-0.5 s on llvmpipe (2 shared
-//  cores), 60% of it the splat; the paper reports 8-12 ms on a 2011 GPU.
+//  Cost: update() of 1024 lights x 8192 points at 64^2 took 175 ms on llvmpipe on an idle 2-core
+//  machine (splat 106, push 53, pull 14, clear 1 ms; 0.2-0.5 s while other builds shared it). The
+//  paper reports 8-12 ms for its AISMs on a 2011 GPU.
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB

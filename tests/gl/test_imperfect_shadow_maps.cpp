@@ -382,7 +382,8 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
     const std::vector<LightRecord> lights = surfaceLights(scene, 8, 5);
     const gl::Buffer lightBuffer = uploadLights(lights);
     ISMParams params;
-    params.points = 8192 * 3; // the runs of lights 3 .. 7 wrap around the point set
+    params.points = 8192 * 3;   // the runs of lights 3 .. 7 wrap around the point set
+    params.pointsPerMap = 8191; // not a multiple of the points one splat invocation handles
     params.pullPushLevels = 0;
     ImperfectShadowMaps ism(test::shaders(), params, 8);
     ism.setScene(scene);
