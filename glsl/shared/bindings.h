@@ -31,10 +31,16 @@ VPLGI_CONST int kBindingVPLBatch = 12;           // SSBO VPLBatchItem[]: the VPL
 VPLGI_CONST int kBindingVSGLights = 13;          // SSBO VSGLight[] (glsl/shared/sg.h): the lights, or the view lights
 VPLGI_CONST int kBindingRSMLayers = 14;          // SSBO RSMLayerLight[] (glsl/shared/rsm.h): each RSM layer's light
 
+// Storage buffers of the imperfect shadow maps (gl/passes/imperfect_shadow_maps).
+VPLGI_CONST int kBindingISMPoints = 15;          // SSBO vec4[]: the scene's surface points (xyz)
+VPLGI_CONST int kBindingISMLights = 16;          // SSBO vec4[]: the lights' records (position+valid, normal, ...)
+
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
 VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)
 VPLGI_CONST int kImageVPLShadowMaps = 6; // r32f 2D array: the VPL paraboloid maps being written
+VPLGI_CONST int kImageISMMaps = 6;    // ISM maps (r32f seen as r32ui): the level being splatted, pulled from or pushed
+VPLGI_CONST int kImageISMCoarser = 7; // ISM maps (r32f seen as r32ui): the next coarser level
 
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;
@@ -54,6 +60,7 @@ VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), af
 VPLGI_CONST int kUnitVPLShadowMaps = 19; // VPL paraboloid maps: distance [m] (sampler2DArray, r32f)
 VPLGI_CONST int kUnitDisplayView = 20; // renderer.display's texture view (sampler2DArray; passes/tonemap.frag)
 VPLGI_CONST int kUnitBilateralInput = 21; // unfiltered radiance read by passes/bilateral_filter.frag
+VPLGI_CONST int kUnitISM = 22; // imperfect shadow maps: distance [m] (sampler2DArray, r32f; gl/passes/imperfect_shadow_maps)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target

@@ -1,0 +1,30 @@
+// Points spread uniformly over a scene's surface area: the point set that imperfect shadow maps
+// splat (gl/passes/imperfect_shadow_maps.h; Ritschel et al. 2008, MATH.md 10.2).
+//
+// Every triangle of every instance (in world space) is chosen with probability proportional to its
+// area, then a point is drawn uniformly inside it (barycentrics (1 - sqrt(u1), sqrt(u1) (1 - u2),
+// sqrt(u1) u2)). The points are i.i.d., so every run of consecutive points is itself a uniform
+// sample of the surface: the ISM pass hands each light such a run. One PCG32 stream keyed by the
+// seed: the same scene and seed give the same points on every machine and thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene/scene.h"
+
+namespace vplgi {
+
+struct SurfacePoints {
+    std::vector<glm::vec3> positions; // world space [m]
+    std::vector<glm::vec3> normals;   // unit geometric normals (triangle winding), world space
+    double totalArea = 0.0;           // world-space area of all triangles [m^2]
+};
+
+// `count` points (>= 0) uniform over the surface area of `scene` (throws Error when count > 0 and
+// the scene has no triangle of positive area).
+SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t seed);
+
+} // namespace vplgi

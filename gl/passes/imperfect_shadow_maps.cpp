@@ -1,0 +1,222 @@
+#include "imperfect_shadow_maps.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../api/debug.h"
+#include "core/scene/surface_points.h"
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/vpl.h"
+
+namespace vplgi {
+
+namespace {
+
+// Points one splat invocation handles (passes/ism_splat.comp ISM_POINTS_PER_INVOCATION).
+constexpr int kSplatPointsPerInvocation = 8;
+
+int log2Exact(int n)
+{
+    int l = 0;
+    while ((1 << l) < n)
+        ++l;
+    return l;
+}
+
+// Level `level` of the maps at image unit `unit` as r32ui (the splat's atomics need an integer
+// format; r32f and r32ui are compatible by size, GL 4.5 section 8.26).
+void bindMapsAsUint(int unit, const gl::Texture& maps, GLenum access, int level)
+{
+    glBindImageTexture(static_cast<GLuint>(unit), maps.id(), level, GL_TRUE, 0, access, GL_R32UI);
+}
+
+} // namespace
+
+void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
+{
+    v.field(prefix + "Points", points, 1, 1 << 24, "surface points of the scene shared by all maps (P)");
+    v.field(prefix + "PointsPerMap", pointsPerMap, 1, 1 << 24,
+            "points splatted into each light's map (VSGL section 4: 8192), at most P");
+    v.field(prefix + "MapSize", mapSize, 4, 1024, "paraboloid map resolution, a power of two (VSGL section 4: 64)");
+    v.field(prefix + "PullPushLevels", pullPushLevels, 0, 10,
+            "pyramid levels of the pull-push hole filling (0 = none, log2 mapSize = every hole)");
+    v.field(prefix + "PullPushDepthRange", pullPushDepthRange, 0.0f, 100.0f,
+            "pull-push averages only texels within (1 + this) x the nearest distance (ours)");
+    v.field(prefix + "DepthBias", depthBias, 0.0f, 1.0f, "lookup: lit while distance <= stored * (1 + bias) (ours)");
+    v.field(prefix + "NormalOffset", normalOffset, 0.0f, 64.0f,
+            "lookup: lift the shaded point along its normal by this many map texels (ours)");
+    v.field(prefix + "Seed", seed, "random stream of the surface points");
+}
+
+ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const ISMParams& params, int maxLights)
+    : mParams(params), mMaxLights(maxLights)
+{
+    const std::string name = "imperfect shadow maps: ";
+    require(params.mapSize >= 4 && params.mapSize <= 1024 && (params.mapSize & (params.mapSize - 1)) == 0,
+            name + "map size " + std::to_string(params.mapSize) + " must be a power of two in [4, 1024]");
+    require(params.pullPushLevels >= 0 && params.pullPushLevels <= log2Exact(params.mapSize),
+            name + "pull-push levels " + std::to_string(params.pullPushLevels) + " outside [0, log2 " +
+                std::to_string(params.mapSize) + " = " + std::to_string(log2Exact(params.mapSize)) + "]");
+    require(params.points >= 1 && params.points <= (1 << 24),
+            name + "points " + std::to_string(params.points) + " outside [1, 2^24]");
+    require(params.pointsPerMap >= 1 && params.pointsPerMap <= params.points,
+            name + "points per map " + std::to_string(params.pointsPerMap) +
+                " outside [1, points = " + std::to_string(params.points) + "]");
+    require(params.pullPushDepthRange >= 0.0f && params.depthBias >= 0.0f && params.normalOffset >= 0.0f,
+            name + "pull-push depth range, depth bias and normal offset must be >= 0");
+    require(maxLights >= 1, name + "maxLights must be >= 1 (got " + std::to_string(maxLights) + ")");
+    // The splat computes light * pointsPerMap in 32-bit unsigned arithmetic.
+    require(static_cast<std::uint64_t>(maxLights) * static_cast<std::uint64_t>(params.pointsPerMap) < (1ull << 32),
+            name + std::to_string(maxLights) + " lights x " + std::to_string(params.pointsPerMap) +
+                " points per map must stay below 2^32");
+
+    GLint maxTextureSize = 0, maxLayers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    ShadowAtlasParams mapLayout;
+    mapLayout.tileSize = params.mapSize;
+    mapLayout.slots = maxLights;
+    mapLayout.viewsPerSlot = 1;
+    mLayout = ShadowAtlas::chooseLayout("imperfect shadow maps", mapLayout, maxTextureSize, maxLayers);
+
+    gl::TextureDesc desc;
+    desc.target = GL_TEXTURE_2D_ARRAY;
+    desc.format = GL_R32F;
+    desc.width = mLayout.layerSize;
+    desc.height = mLayout.layerSize;
+    desc.layers = mLayout.layers;
+    desc.levels = params.pullPushLevels + 1;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    mMaps = gl::Texture("imperfect shadow maps", desc);
+    require(glGetError() != GL_OUT_OF_MEMORY,
+            name + "the driver could not allocate " +
+                std::to_string(static_cast<long long>(mLayout.memoryMiB * 4.0 / 3.0 + 0.5)) + " MiB");
+    // A map never rendered shadows nothing.
+    const float none = shared::kVPLNoOccluder;
+    for (int level = 0; level < desc.levels; ++level)
+        glClearTexImage(mMaps.id(), level, GL_RED, GL_FLOAT, &none);
+
+    gl::SamplerDesc samplerDesc;
+    samplerDesc.minFilter = GL_NEAREST;
+    samplerDesc.magFilter = GL_NEAREST;
+    mSampler = gl::Sampler("imperfect shadow maps sampler", samplerDesc);
+    reloadShaders(shaders);
+}
+
+void ImperfectShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    mSplat = ComputePass(shaders, "ISM splat", "passes/ism_splat.comp",
+                         {"ISM_POINTS_PER_INVOCATION=" + std::to_string(kSplatPointsPerInvocation)});
+    mPull = ComputePass(shaders, "ISM pull", "passes/ism_pull.comp");
+    mPush = ComputePass(shaders, "ISM push", "passes/ism_push.comp");
+}
+
+void ImperfectShadowMaps::setScene(const Scene& scene)
+{
+    const SurfacePoints sample = sampleSurfacePoints(scene, mParams.points, mParams.seed);
+    std::vector<glm::vec4> packed(sample.positions.size());
+    for (std::size_t i = 0; i < packed.size(); ++i)
+        packed[i] = glm::vec4(sample.positions[i], 1.0f);
+    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)),
+                         packed.data(), false);
+    mPointCount = static_cast<int>(packed.size());
+}
+
+void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, gl::PassTimer* timer)
+{
+    require(mPointCount > 0, "imperfect shadow maps: update() before setScene()");
+    require(count >= 0 && count <= mMaxLights,
+            "imperfect shadow maps: " + std::to_string(count) + " lights, at most " + std::to_string(mMaxLights));
+    require(strideVec4 >= 2, "imperfect shadow maps: light stride " + std::to_string(strideVec4) + " < 2 vec4s");
+    require(static_cast<std::int64_t>(count) * strideVec4 * 16 <= lights.size(),
+            "imperfect shadow maps: " + std::to_string(count) + " lights x " + std::to_string(strideVec4) +
+                " vec4s exceed the light buffer (" + std::to_string(lights.size()) + " bytes)");
+    if (count == 0) return;
+    gl::DebugGroup group("imperfect shadow maps");
+
+    clearMaps(count, timer);
+
+    bindMapsAsUint(shared::kImageISMMaps, mMaps, GL_READ_WRITE, 0);
+    bindStorageBuffer(shared::kBindingISMPoints, mPoints);
+    bindStorageBuffer(shared::kBindingISMLights, lights);
+    const gl::Program& splat = mSplat.program();
+    splat.set("uCount", count);
+    splat.set("uStride", strideVec4);
+    splat.set("uPointsPerMap", mParams.pointsPerMap);
+    splat.set("uPointCount", mPointCount);
+    splat.set("uMapSize", mParams.mapSize);
+    splat.set("uTilesPerRow", mLayout.tilesPerRow);
+    // Pull reads the splat next; without pull-push the shading pass (or a test's readback) does.
+    const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;
+    mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
+                    NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
+
+    fillHoles(count, timer);
+}
+
+void ImperfectShadowMaps::clearMaps(int count, gl::PassTimer* timer) const
+{
+    // Tiles 0 .. count-1 fill whole layers, then whole rows of the next layer, then part of one row:
+    // at most three rectangles. On llvmpipe this took 1 ms for 1024 maps of 64^2, a clearing kernel 37 ms.
+    std::optional<gl::PassTimer::Scope> scope;
+    if (timer) scope.emplace(*timer, "ISM clear");
+    const float none = shared::kVPLNoOccluder;
+    const int n = mLayout.tilesPerRow, size = mParams.mapSize, perLayer = n * n;
+    const int layers = count / perLayer, rows = (count % perLayer) / n, rest = count % n;
+    auto clear = [&](int x, int y, int layer, int width, int height, int depth) {
+        if (width > 0 && height > 0 && depth > 0)
+            glClearTexSubImage(mMaps.id(), 0, x * size, y * size, layer, width * size, height * size, depth, GL_RED,
+                               GL_FLOAT, &none);
+    };
+    clear(0, 0, 0, n, n, layers);
+    clear(0, 0, layers, n, rows, 1);
+    clear(0, rows, layers, rest, 1, 1);
+}
+
+void ImperfectShadowMaps::fillHoles(int count, gl::PassTimer* timer)
+{
+    require(count >= 0 && count <= mMaxLights, "imperfect shadow maps: fillHoles of " + std::to_string(count) +
+                                                   " lights, at most " + std::to_string(mMaxLights));
+    if (count == 0 || mParams.pullPushLevels == 0) return;
+    gl::DebugGroup group("ISM pull-push");
+    for (const gl::Program* program : {&mPull.program(), &mPush.program()}) {
+        program->set("uCount", count);
+        program->set("uTilesPerRow", mLayout.tilesPerRow);
+        program->set("uDepthRange", mParams.pullPushDepthRange);
+    }
+    // Pull: level l -> l + 1.
+    for (int level = 0; level < mParams.pullPushLevels; ++level) {
+        const int coarseSize = mParams.mapSize >> (level + 1);
+        bindMapsAsUint(shared::kImageISMMaps, mMaps, GL_READ_ONLY, level);
+        bindMapsAsUint(shared::kImageISMCoarser, mMaps, GL_WRITE_ONLY, level + 1);
+        mPull.program().set("uCoarseSize", coarseSize);
+        mPull.dispatch(glm::ivec3(coarseSize * coarseSize, count, 1), NextRead::Image, timer);
+    }
+    // Push: level l from l + 1, coarsest first. The shading pass fetches level 0 next.
+    for (int level = mParams.pullPushLevels - 1; level >= 0; --level) {
+        const int coarseSize = mParams.mapSize >> (level + 1);
+        bindMapsAsUint(shared::kImageISMMaps, mMaps, GL_READ_WRITE, level);
+        bindMapsAsUint(shared::kImageISMCoarser, mMaps, GL_READ_ONLY, level + 1);
+        mPush.program().set("uCoarseSize", coarseSize);
+        mPush.dispatch(
+            glm::ivec3(4 * coarseSize * coarseSize, count, 1),
+            level == 0 ? NextRead::TextureFetch | NextRead::Image | NextRead::TextureReadback : NextRead::Image, timer);
+    }
+}
+
+void ImperfectShadowMaps::bindForReading(const gl::Program& program) const
+{
+    glBindTextureUnit(shared::kUnitISM, mMaps.id());
+    glBindSampler(shared::kUnitISM, mSampler.id());
+    program.set("uISMMapSize", mParams.mapSize);
+    program.set("uISMTilesPerRow", mLayout.tilesPerRow);
+    program.set("uISMNormalOffset", mParams.normalOffset);
+    program.set("uISMDepthBias", mParams.depthBias);
+}
+
+} // namespace vplgi

@@ -1,0 +1,146 @@
+// Imperfect shadow maps (gl/passes/imperfect_shadow_maps.h), defined once for GLSL and C++: where a
+// scene point is splatted, where a shaded point is looked up, and the pull-push arithmetic.
+//
+// The maps are SMCIR's paraboloid maps (glsl/shared/vpl.h): the hemisphere about the light's normal
+// in the light frame of lightViewBasis, texel vplParaboloidTexel, the distance [m] to the nearest
+// surface stored as r32f, kVPLNoOccluder where nothing is known, one tile per light addressed like
+// the shadow atlas (glsl/shared/shadow_atlas.h, one view per slot). A splatted point and a looked-up
+// point in the same direction land in the same texel because both go through ismMapTexel.
+//
+// Pull-push (Grossman & Dally 1998, as ISMs use it; MATH.md 10.2). Empty texels hold
+// kVPLNoOccluder. Both steps average only texels within (1 + depthRange) times the nearest valid
+// distance among their inputs, so a hole next to a depth edge takes the foreground's distance, not a
+// blend of foreground and background that would float in empty space.
+//  Pull: coarse texel = that average over its 2 x 2 finer texels; empty when all four are.
+//  Push: an empty finer texel takes the bilinear interpolation (weights 9, 3, 3, 1 / 16) of the four
+//        coarser texels nearest its centre, over those inside the tile and valid (weights
+//        renormalised); valid finer texels keep their value.
+#ifndef VPLGI_SHARED_ISM_H
+#define VPLGI_SHARED_ISM_H
+#include "compat.h"
+#include "light_view.h"
+#include "shadow_atlas.h"
+#include "vpl.h"
+
+VPLGI_SHARED_BEGIN
+
+// Points this close to the light's tangent plane (cosine to its normal) are not splatted: points of
+// the surface the light lies on would otherwise put distances near 0 into the rim texels, and
+// pull-push would spread them inwards.
+VPLGI_CONST float kISMHorizonCosine = 1.0e-3f;
+
+// True when `distance` is a stored distance, false for kVPLNoOccluder.
+VPLGI_FUNC bool ismValid(float distance)
+{
+    return distance < kVPLNoOccluder;
+}
+
+// Texel (x, y in the layer, layer) of light `light`'s map holding unit direction `directionLight`
+// (light frame, z >= 0): vplParaboloidTexel inside the light's tile.
+VPLGI_FUNC ivec3 ismMapTexel(int light, vec3 directionLight, int mapSize, int tilesPerRow)
+{
+    ivec3 tile = shadowAtlasTileFromIndex(light, tilesPerRow);
+    ivec2 texel = vplParaboloidTexel(directionLight, mapSize);
+    return ivec3(tile.x * mapSize + texel.x, tile.y * mapSize + texel.y, tile.z);
+}
+
+// The texel a scene point is splatted into, or ivec3(-1) when the point is behind the light's
+// tangent plane (or within kISMHorizonCosine of it, or at the light itself). `lightFrame` =
+// lightViewBasis(the light's normal).
+VPLGI_FUNC ivec3 ismSplatTexel(int light, vec3 lightPosition, mat3 lightFrame, vec3 point, int mapSize, int tilesPerRow)
+{
+    vec3 toPoint = point - lightPosition;
+    float distance = length(toPoint);
+    if (!(distance > 0.0f)) return ivec3(-1);
+    vec3 directionLight = transpose(lightFrame) * (toPoint / distance);
+    if (!(directionLight.z > kISMHorizonCosine)) return ivec3(-1);
+    return ismMapTexel(light, directionLight, mapSize, tilesPerRow);
+}
+
+// The point a lookup tests for shaded point x (normal nx): x lifted along nx by normalOffset map
+// texels at its distance from the light (a paraboloid texel spans 2/N to 4/N radians), as SMCIR's
+// lookup (passes/vpl_shading.frag) does.
+VPLGI_FUNC vec3 ismLookupPoint(vec3 lightPosition, vec3 x, vec3 nx, float normalOffset, int mapSize)
+{
+    float d = length(x - lightPosition);
+    return x + nx * (normalOffset * 4.0f * d / float(mapSize));
+}
+
+// The texel a lookup of point q (from ismLookupPoint) reads: its direction in the light frame,
+// pulled up onto the hemisphere when it is below it.
+VPLGI_FUNC ivec3 ismLookupTexel(int light, vec3 lightPosition, vec3 lightNormal, vec3 q, int mapSize, int tilesPerRow)
+{
+    vec3 toPoint = q - lightPosition;
+    vec3 d = transpose(lightViewBasis(lightNormal)) * (toPoint / length(toPoint));
+    vec3 directionLight = normalize(vec3(d.x, d.y, max(d.z, 0.0f)));
+    return ismMapTexel(light, directionLight, mapSize, tilesPerRow);
+}
+
+// 1 = lit, 0 = shadowed: q's distance against the stored one with SMCIR's relative bias.
+VPLGI_FUNC float ismVisibilityFromStored(float distanceToLight, float stored, float depthBias)
+{
+    return distanceToLight <= stored * (1.0f + depthBias) ? 1.0f : 0.0f;
+}
+
+// Pull: one coarser texel from its four finer ones (any order).
+VPLGI_FUNC float ismPull(vec4 finer, float depthRange)
+{
+    float nearest = min(min(finer.x, finer.y), min(finer.z, finer.w));
+    if (!ismValid(nearest)) return kVPLNoOccluder;
+    float limit = nearest * (1.0f + depthRange);
+    float sum = 0.0f;
+    float count = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+        float d = finer[i];
+        if (ismValid(d) && d <= limit) {
+            sum += d;
+            count += 1.0f;
+        }
+    }
+    return sum / count;
+}
+
+// Push: an empty finer texel from the four coarser texels around its centre, `coarser` with
+// `weights` (9/16 for the parent, 3/16 for the two beside it, 1/16 diagonal; 0 for a neighbour
+// outside the tile). A valid `own` value is kept.
+VPLGI_FUNC float ismPush(float own, vec4 coarser, vec4 weights, float depthRange)
+{
+    if (ismValid(own)) return own;
+    float nearest = kVPLNoOccluder;
+    for (int i = 0; i < 4; ++i)
+        if (weights[i] > 0.0f) nearest = min(nearest, coarser[i]);
+    if (!ismValid(nearest)) return kVPLNoOccluder;
+    float limit = nearest * (1.0f + depthRange);
+    float sum = 0.0f;
+    float weight = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+        float d = coarser[i];
+        if (weights[i] > 0.0f && ismValid(d) && d <= limit) {
+            sum += weights[i] * d;
+            weight += weights[i];
+        }
+    }
+    return sum / weight;
+}
+
+// The coarser texel (in the coarser level's tile, size coarseSize) that finer texel `finer` reads
+// as neighbour `which` (0 parent, 1 beside in x, 2 beside in y, 3 diagonal), and that neighbour's
+// weight (0 when it falls outside the tile): the 9-3-3-1 bilinear stencil.
+VPLGI_FUNC ivec2 ismPushNeighbour(ivec2 finer, int which)
+{
+    ivec2 parent = ivec2(finer.x / 2, finer.y / 2);
+    ivec2 step = ivec2(finer.x % 2 == 1 ? 1 : -1, finer.y % 2 == 1 ? 1 : -1);
+    ivec2 offset = ivec2((which == 1 || which == 3) ? step.x : 0, (which == 2 || which == 3) ? step.y : 0);
+    return parent + offset;
+}
+
+VPLGI_FUNC float ismPushWeight(ivec2 finer, int which, int coarseSize)
+{
+    ivec2 c = ismPushNeighbour(finer, which);
+    if (c.x < 0 || c.y < 0 || c.x >= coarseSize || c.y >= coarseSize) return 0.0f;
+    return which == 0 ? 9.0f / 16.0f : (which == 3 ? 1.0f / 16.0f : 3.0f / 16.0f);
+}
+
+VPLGI_SHARED_END
+
+#endif // VPLGI_SHARED_ISM_H
