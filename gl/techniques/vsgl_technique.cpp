@@ -46,6 +46,7 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLi
     v.field(p + ".animateSeed", animateSeed, "new draws every frame (default: the same uniforms every frame)");
     v.choice(p + ".visibility", visibility, {"ism", "none"},
              "light visibility: imperfect shadow maps (the paper's AISMs without view adaptation) or none");
+    ism.visitParams(v, p + ".ism");
     rsm.visitParams(v);
 }
 
@@ -72,6 +73,8 @@ void VSGLTechnique::setScene(const SceneContext& context)
 {
     mScene = &context.scene;
     mGpuScene = &context.gpuScene;
+    mShaders = &context.shaders;
+    mISM.reset();
     createPasses(context.shaders);
     gl::SamplerDesc trilinear;
     trilinear.minFilter = GL_LINEAR_MIPMAP_LINEAR;
@@ -84,7 +87,17 @@ void VSGLTechnique::setScene(const SceneContext& context)
 
 void VSGLTechnique::reloadShaders(const gl::ShaderLoader& shaders)
 {
-    if (mScene) createPasses(shaders);
+    if (!mScene) return;
+    createPasses(shaders);
+    if (mISM) mISM->reloadShaders(shaders);
+}
+
+void VSGLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
+{
+    // The maps are sized for N lights and hold the point set: remade on the next render().
+    const std::string p = std::string(name()) + ".";
+    for (const std::string& key : changedKeys)
+        if (key == p + "count" || key.rfind(p + "ism", 0) == 0) mISM.reset();
 }
 
 void VSGLTechnique::update(const FrameContext&) {}
@@ -181,6 +194,15 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
             glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
     }
+    const bool visibility = mParams.visibility == VSGLParams::ISM;
+    if (visibility) {
+        gl::PassTimer::Scope scope(frame.timer, "shadow maps");
+        if (!mISM || mISM->maxLights() < mParams.count) {
+            mISM = std::make_unique<ImperfectShadowMaps>(*mShaders, mParams.ism, mParams.count);
+            mISM->setScene(*mScene);
+        }
+        mISM->update(mLights, mParams.count, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)));
+    }
     {
         gl::PassTimer::Scope scope(frame.timer, "radiance estimation");
         mShaded.resize(frame.width, frame.height);
@@ -192,7 +214,8 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         shading.set("uPointLights", mPointLights ? 1 : 0);
         shading.set("uBiasAlpha", mParams.biasAlpha);
         shading.set("uClampGeometry", mPointLights ? mParams.clampGeometry : 0.0f);
-        shading.set("uVisibility", mParams.visibility == VSGLParams::ImperfectShadowMaps ? 1 : 0);
+        shading.set("uVisibility", visibility ? 1 : 0);
+        if (visibility) mISM->bindForReading(shading);
         mShading->render(mShaded);
     }
     glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0, 0,
@@ -223,6 +246,11 @@ std::vector<DebugView> VSGLTechnique::debugViews() const
                      mImportance ? &mImportance : nullptr, shared::kDebugViewCount, {0.0f, 1.0f}});
     views.push_back({t + ".viewLights", "the G-buffer grid acting as the light (its flux: coverage)",
                      mViewRSM ? &mViewRSM.color(shared::kRSMNormal) : nullptr, shared::kDebugViewNormal});
+    DebugView maps{t + ".ism", "the imperfect shadow maps of every light: distance [0, scene diagonal]",
+                   mISM ? &mISM->maps() : nullptr, shared::kDebugViewScalar,
+                   {0.0f, mScene ? glm::length(mScene->worldBounds().extent()) : 1.0f}};
+    maps.layerCount = 0;
+    views.push_back(maps);
     if (!mPointLights)
         views.push_back({t + ".cancellation",
                          "fraction of the lights whose SG approximation section 3.3 cancelled (Fig. 6 bottom)",

@@ -28,7 +28,8 @@
 //                          the layers side by side
 //                       3. ImportanceSampler: tables and N draws (MATH.md 9.7)
 //  VPL/VSGL generation  vsgl_generate.comp: VSGLight per draw (mip level, radius, lobe) or VPL
-//  shadow maps          imperfect shadow maps of the N lights (or none)
+//  shadow maps          imperfect shadow maps of the N lights (gl/passes/imperfect_shadow_maps.h:
+//                       8192 points splatted into a 64^2 paraboloid map per light, pull-push), or none
 //  radiance estimation  vsgl_shading.frag: every pixel sums the N lights
 //
 // Details
@@ -55,6 +56,7 @@
 #include "../api/render_target.h"
 #include "../passes/compute_pass.h"
 #include "../passes/fullscreen_pass.h"
+#include "../passes/imperfect_shadow_maps.h"
 #include "../passes/importance_sampler.h"
 #include "../passes/rsm_pass.h"
 #include "technique.h"
@@ -62,7 +64,7 @@
 namespace vplgi {
 
 struct VSGLParams {
-    enum Visibility { ImperfectShadowMaps, NoVisibility };
+    enum Visibility { ISM, NoVisibility };
     int count = 1024;           // N lights (section 4: 1024) [1, 65536]
     float smoothness = 4.0f;    // k of the mip level (section 3.2; section 4: 4)
     float biasAlpha = 0.001f;   // alpha of section 3.3 (Fig. 6: 0.001); 0 = never cancel (vsgl only)
@@ -71,7 +73,8 @@ struct VSGLParams {
     int viewLevel = 2;          // its mip level whose texels are the view lights ((64/4)^2 = 256)
     std::uint32_t seed = 1;     // the draws' uniforms
     bool animateSeed = false;   // new uniforms every frame
-    int visibility = NoVisibility;
+    int visibility = ISM;
+    ISMParams ism;              // keys <technique>.ism* (section 4: 8192 points, 64^2 per map)
     RSMParams rsm;              // key rsm.size (section 4: 256^2)
 
     void visitParams(ParamVisitor& visitor, const std::string& prefix, bool pointLights);
@@ -89,6 +92,7 @@ public:
     void reloadShaders(const gl::ShaderLoader& shaders) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
     std::vector<DebugView> debugViews() const override;
+    void applyParamChanges(const std::set<std::string>& changedKeys) override;
 
     // For tests.
     const RSMPass& rsm() const { return *mRSM; }
@@ -101,6 +105,7 @@ private:
     bool mPointLights;
     VSGLParams mParams;
     const Scene* mScene = nullptr;
+    const gl::ShaderLoader* mShaders = nullptr;
     const GpuScene* mGpuScene = nullptr;
     std::unique_ptr<RSMPass> mRSM;
     std::unique_ptr<ImportanceSampler> mSampler;
@@ -108,6 +113,7 @@ private:
     ComputePass mGeneratePass;
     ComputePass mImportancePass;
     std::unique_ptr<FullscreenPass> mShading;
+    std::unique_ptr<ImperfectShadowMaps> mISM; // made for the current count and ISM parameters
     gl::Sampler mTrilinear;
     gl::RenderTarget mViewRSM;   // the G-buffer grid in the RSM layout, with mips
     gl::Texture mImportance;     // R32F, (rsm.size x layers) x rsm.size

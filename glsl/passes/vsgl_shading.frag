@@ -5,6 +5,7 @@
 // Outputs: the indirect radiance, and the fraction of lights whose SG approximation was cancelled
 // (VSGL Fig. 6 bottom).
 #include "../lib/frame.glsl"
+#include "../lib/ism.glsl"
 #include "../shared/rsm.h"
 #include "../shared/sg.h"
 
@@ -25,10 +26,6 @@ uniform int uVisibility;     // 0 none, 1 imperfect shadow maps
 layout(location = 0) out vec4 outRadiance;
 layout(location = 1) out vec4 outCancelled;
 
-float visibility(int i, vec3 p, vec3 n)
-{
-    return 1.0;
-}
 
 void main()
 {
@@ -58,7 +55,7 @@ void main()
         VSGLight l = lights[i];
         if (l.normalValid.w == 0.0) continue;
         valid += 1.0;
-        float v = visibility(i, s.position, s.normal);
+        float v = uVisibility != 0 ? ismVisibility(i, l.positionRadius2.xyz, l.normalValid.xyz, s.position, s.normal) : 1.0;
         if (v == 0.0) continue;
         if (uPointLights != 0) {
             vec3 toLight = rsmDirectionToLight(layers[int(l.flux.w)], l.positionRadius2.xyz);
