@@ -7,6 +7,7 @@
 #include "../shared/brdf.h"
 #include "../shared/shadow_atlas.h"
 #include "../shared/vpl.h"
+#include "../shared/ism.h"
 
 layout(binding = kUnitGBufferPosition) uniform sampler2D uPosition;
 layout(binding = kUnitGBufferNormal) uniform sampler2D uNormal;
@@ -33,17 +34,11 @@ float visibility(int slot, vec3 vplPosition, vec3 vplNormal, vec3 p, vec3 n)
 {
     if (uVisibility == 0) return 1.0;
     if (uVisibility == 2) return texelFetch(uMaps, ivec3(0), 0).r > -1.0 ? 1.0 : 0.0;
-    // A paraboloid texel spans 2/N (rim) to 4/N (centre) radians: lift by that at the distance.
-    float d = length(p - vplPosition);
-    vec3 q = p + n * (uNormalOffset * 4.0 * d / float(uMapSize));
-    vec3 toPoint = q - vplPosition;
-    float dq = length(toPoint);
-    vec3 directionLight = transpose(lightViewBasis(vplNormal)) * (toPoint / dq);
-    directionLight.z = max(directionLight.z, 0.0);
-    ivec2 texel = vplParaboloidTexel(normalize(directionLight), uMapSize);
-    ivec3 tile = shadowAtlasTileFromIndex(slot, uMapTilesPerRow);
-    float stored = texelFetch(uMaps, ivec3(tile.xy * uMapSize + texel, tile.z), 0).r;
-    return dq <= stored * (1.0 + uDepthBias) ? 1.0 : 0.0;
+    // The lookup the imperfect shadow maps share (glsl/shared/ism.h): lift p along n by
+    // uNormalOffset map texels at its distance, read the light's paraboloid texel, relative bias.
+    vec3 q = ismLookupPoint(vplPosition, p, n, uNormalOffset, uMapSize);
+    float stored = texelFetch(uMaps, ismLookupTexel(slot, vplPosition, vplNormal, q, uMapSize, uMapTilesPerRow), 0).r;
+    return ismVisibilityFromStored(length(q - vplPosition), stored, uDepthBias);
 }
 
 void main()
