@@ -74,32 +74,8 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
             name + std::to_string(maxLights) + " lights x " + std::to_string(params.pointsPerMap) +
                 " points per map must stay below 2^32");
 
-    GLint maxTextureSize = 0, maxLayers = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    ShadowAtlasParams mapLayout;
-    mapLayout.tileSize = params.mapSize;
-    mapLayout.slots = maxLights;
-    mapLayout.viewsPerSlot = 1;
-    mLayout = ShadowAtlas::chooseLayout("imperfect shadow maps", mapLayout, maxTextureSize, maxLayers);
-
-    gl::TextureDesc desc;
-    desc.target = GL_TEXTURE_2D_ARRAY;
-    desc.format = GL_R32F;
-    desc.width = mLayout.layerSize;
-    desc.height = mLayout.layerSize;
-    desc.layers = mLayout.layers;
-    desc.levels = params.pullPushLevels + 1;
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    mMaps = gl::Texture("imperfect shadow maps", desc);
-    require(glGetError() != GL_OUT_OF_MEMORY,
-            name + "the driver could not allocate " +
-                std::to_string(static_cast<long long>(mLayout.memoryMiB * 4.0 / 3.0 + 0.5)) + " MiB");
-    // A map never rendered shadows nothing.
-    const float none = shared::kVPLNoOccluder;
-    for (int level = 0; level < desc.levels; ++level)
-        glClearTexImage(mMaps.id(), level, GL_RED, GL_FLOAT, &none);
+    mMaps = makeParaboloidMapAtlas("imperfect shadow maps", params.mapSize, maxLights, params.pullPushLevels + 1,
+                                   mLayout);
 
     gl::SamplerDesc samplerDesc;
     samplerDesc.minFilter = GL_NEAREST;

@@ -9,6 +9,7 @@
 #include "core/util/error.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/shadow_atlas.h"
+#include "glsl/shared/vpl.h"
 
 namespace vplgi {
 
@@ -215,6 +216,39 @@ void ShadowAtlas::bindForReading() const
     glBindTextureUnit(shared::kUnitShadowAtlas, mTarget.depth().id());
     glBindSampler(shared::kUnitShadowAtlas, mSampler.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowAtlasMatrices, mMatrixBuffer.id());
+}
+
+gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slots, int levels,
+                                   ShadowAtlasLayout& layout)
+{
+    GLint maxTextureSize = 0, maxLayers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    // 4 bytes per texel as the shadow atlas's DEPTH32F: its memory estimate holds for level 0.
+    ShadowAtlasParams params;
+    params.tileSize = mapSize;
+    params.slots = slots;
+    params.viewsPerSlot = 1;
+    layout = ShadowAtlas::chooseLayout(name, params, maxTextureSize, maxLayers);
+
+    gl::TextureDesc desc;
+    desc.target = GL_TEXTURE_2D_ARRAY;
+    desc.format = GL_R32F;
+    desc.width = layout.layerSize;
+    desc.height = layout.layerSize;
+    desc.layers = layout.layers;
+    desc.levels = levels;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    gl::Texture maps(name, desc);
+    const double mipFactor = levels > 1 ? 4.0 / 3.0 : 1.0;
+    require(glGetError() != GL_OUT_OF_MEMORY,
+            name + ": the driver could not allocate " +
+                std::to_string(static_cast<long long>(layout.memoryMiB * mipFactor + 0.5)) + " MiB");
+    const float none = shared::kVPLNoOccluder;
+    for (int level = 0; level < levels; ++level)
+        glClearTexImage(maps.id(), level, GL_RED, GL_FLOAT, &none);
+    return maps;
 }
 
 } // namespace vplgi

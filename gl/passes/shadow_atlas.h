@@ -125,4 +125,12 @@ private:
     gl::Sampler mSampler;
 };
 
+// An atlas of r32f paraboloid distance maps (SMCIR's VPL maps, the imperfect shadow maps): one
+// mapSize^2 tile per slot with the shadow atlas's addressing (one view per slot, chooseLayout's
+// limits), `levels` mip levels, every texel of every level cleared to shared::kVPLNoOccluder (a map
+// never written shadows nothing). `layout` receives the layout. Throws Error naming `name` when the
+// layout exceeds the GL limits or the driver cannot allocate it.
+gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slots, int levels,
+                                   ShadowAtlasLayout& layout);
+
 } // namespace vplgi

@@ -32,32 +32,7 @@ VPLShadowMaps::VPLShadowMaps(const gl::ShaderLoader& shaders, const VPLShadowMap
     require(params.zNear > 0.0f && params.zFar > params.zNear, "VPL shadow maps: need 0 < zNear < zFar");
     mParams.batchSize = std::min(params.batchSize, params.slots);
 
-    GLint maxTextureSize = 0, maxLayers = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    // The paraboloid maps use the shadow atlas's addressing with one view per slot (4 bytes per
-    // texel there too: r32f instead of DEPTH32F).
-    ShadowAtlasParams mapLayout;
-    mapLayout.tileSize = params.mapSize;
-    mapLayout.slots = params.slots;
-    mapLayout.viewsPerSlot = 1;
-    mLayout = ShadowAtlas::chooseLayout("VPL paraboloid maps", mapLayout, maxTextureSize, maxLayers);
-
-    gl::TextureDesc desc;
-    desc.target = GL_TEXTURE_2D_ARRAY;
-    desc.format = GL_R32F;
-    desc.width = mLayout.layerSize;
-    desc.height = mLayout.layerSize;
-    desc.layers = mLayout.layers;
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    mMaps = gl::Texture("VPL paraboloid maps", desc);
-    require(glGetError() != GL_OUT_OF_MEMORY,
-            "VPL paraboloid maps: the driver could not allocate " +
-                std::to_string(static_cast<long long>(mLayout.memoryMiB + 0.5)) + " MiB");
-    // A map never rendered shadows nothing.
-    const float none = shared::kVPLNoOccluder;
-    glClearTexImage(mMaps.id(), 0, GL_RED, GL_FLOAT, &none);
+    mMaps = makeParaboloidMapAtlas("VPL paraboloid maps", params.mapSize, params.slots, 1, mLayout);
 
     gl::SamplerDesc samplerDesc;
     samplerDesc.minFilter = GL_NEAREST;

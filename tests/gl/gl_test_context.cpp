@@ -41,6 +41,26 @@ std::string objectLabel(GLenum identifier, GLuint id)
     return std::string(label, static_cast<std::size_t>(length));
 }
 
+std::vector<glm::vec4> runComputeProbe(const std::string& name, const std::string& file, const void* cases,
+                                       std::size_t caseBytes, int count, int resultsPerCase)
+{
+    gl::Program program = gl::ShaderLoader(std::string(VPLGI_SOURCE_DIR) + "/glsl")
+                              .load(name, {{GL_COMPUTE_SHADER, "../tests/gl/glsl/" + file}});
+    gl::Buffer input(name + " cases", static_cast<GLsizeiptr>(caseBytes), cases);
+    const std::size_t results = static_cast<std::size_t>(count) * static_cast<std::size_t>(resultsPerCase);
+    gl::Buffer output(name + " results", static_cast<GLsizeiptr>(results * sizeof(glm::vec4)));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, output.id());
+    program.set("uCount", count);
+    glUseProgram(program.id());
+    glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> out(results);
+    glGetNamedBufferSubData(output.id(), 0, output.size(), out.data());
+    glUseProgram(0);
+    return out;
+}
+
 std::unique_ptr<Renderer> makeTechniqueRenderer(const Scene& scene, const std::string& name,
                                                 const Settings& settings)
 {

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/util/image_io.h"
 #include "gl/api/objects.h"
@@ -21,6 +22,11 @@ const gl::ShaderLoader& shaders();
 std::string objectLabel(GLenum identifier, GLuint id);
 // Writes `image` under the test output directory (for failures) and returns the path.
 std::string saveTestImage(const std::string& name, const ImageRGBA32F& image);
+// Runs the compute probe tests/gl/glsl/<file> (local size 64, SSBO 0 the `count` input cases,
+// SSBO 1 resultsPerCase vec4 per case, uniform uCount) and returns the results: how the GL tests
+// evaluate a shared header in GLSL next to its C++ build.
+std::vector<glm::vec4> runComputeProbe(const std::string& name, const std::string& file, const void* cases,
+                                       std::size_t caseBytes, int count, int resultsPerCase);
 // A renderer of `scene` with technique `name`, the renderer's and the technique's fields set from
 // `settings` (key -> value, as --set); throws Error on an unknown key.
 std::unique_ptr<Renderer> makeTechniqueRenderer(const Scene& scene, const std::string& name,

@@ -83,21 +83,9 @@ TEST_CASE("the light-view maths give the same values in GLSL and C++", "[gl][lig
         c.uvTexel = glm::vec4(uv, std::floor(u(rng) * resolution * resolution), resolution);
         cases.push_back(c);
     }
-    gl::Program program =
-        gl::ShaderLoader(std::string(VPLGI_SOURCE_DIR) + "/glsl")
-            .load("light view probe", {{GL_COMPUTE_SHADER, "../tests/gl/glsl/light_view_probe.comp"}});
-    gl::Buffer input("light view cases", static_cast<GLsizeiptr>(cases.size() * sizeof(Case)), cases.data());
-    gl::Buffer output("light view results",
-                      static_cast<GLsizeiptr>(cases.size() * kResultsPerCase * sizeof(glm::vec4)));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, output.id());
-    program.set("uCount", static_cast<int>(cases.size()));
-    glUseProgram(program.id());
-    glDispatchCompute(static_cast<GLuint>((cases.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<glm::vec4> results(cases.size() * kResultsPerCase);
-    glGetNamedBufferSubData(output.id(), 0, output.size(), results.data());
-    glUseProgram(0);
+    const std::vector<glm::vec4> results =
+        test::runComputeProbe("light view probe", "light_view_probe.comp", cases.data(), cases.size() * sizeof(Case),
+                              static_cast<int>(cases.size()), kResultsPerCase);
 
     // Per output row, the largest |GPU - CPU| relative to the row's magnitude (1 + max |component|).
     double worst[kResultsPerCase] = {};
