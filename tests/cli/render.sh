@@ -55,6 +55,24 @@ test -s "$work/c.exr"
 "$vplgi" render --scene "$here/scenes/maze.json" --frames 3 --width 64 --height 48 --out "$work/m.png" --quiet >/dev/null
 test -s "$work/m.png"
 
+# The RSM techniques from their scene files (vsgl), small: indirect light on the floor, each debug
+# view of vsgl written and different from the final image.
+"$vplgi" render --scene "$here/scenes/caustics.json" --width 64 --height 48 --set rsm.size=64 --set vsgl.count=128 \
+  --set renderer.display=indirect --out "$work/vsgl-indirect.png" --quiet >/dev/null
+mean=$(mean_of "$work/vsgl-indirect.png")
+echo "caustics, vsgl indirect: mean display value $mean"
+python3 -c "import sys; sys.exit(0 if float('$mean') > 2 else 1)" || { echo "FAIL: vsgl's indirect light is black"; exit 1; }
+"$vplgi" render --scene "$here/scenes/caustics.json" --width 64 --height 48 --set rsm.size=64 --set vsgl.count=128 \
+  --out "$work/vsgl-final.png" --quiet >/dev/null
+for view in vsgl.rsm vsgl.rsmNormal vsgl.importance vsgl.viewLights vsgl.ism vsgl.cancellation; do
+  "$vplgi" render --scene "$here/scenes/caustics.json" --width 64 --height 48 --set rsm.size=64 --set vsgl.count=128 \
+    --set renderer.display=$view --out "$work/view-$view.png" --quiet >/dev/null
+  if cmp -s "$work/vsgl-final.png" "$work/view-$view.png"; then echo "FAIL: display=$view shows the final image"; exit 1; fi
+done
+"$vplgi" render --scene "$here/scenes/caustics.json" --technique vpl-brsm --width 64 --height 48 --set rsm.size=64 \
+  --set vpl-brsm.count=128 --out "$work/vpl-brsm.png" --quiet >/dev/null
+test -s "$work/vpl-brsm.png"
+
 # Each debug view (renderer.display) writes that view: every one differs from the final image.
 for view in direct albedo normal depth; do
   "$vplgi" render --scene cornell --width 48 --height 48 --set renderer.display=$view --out "$work/view-$view.png" --quiet >/dev/null
