@@ -103,12 +103,15 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     mPointCount = static_cast<int>(packed.size());
 }
 
-void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, gl::PassTimer* timer)
+void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, int validVec4,
+                                 gl::PassTimer* timer)
 {
     require(mPointCount > 0, "imperfect shadow maps: update() before setScene()");
     require(count >= 0 && count <= mMaxLights,
             "imperfect shadow maps: " + std::to_string(count) + " lights, at most " + std::to_string(mMaxLights));
     require(strideVec4 >= 2, "imperfect shadow maps: light stride " + std::to_string(strideVec4) + " < 2 vec4s");
+    require(validVec4 >= 0 && validVec4 < strideVec4,
+            "imperfect shadow maps: the valid flag's vec4 " + std::to_string(validVec4) + " is outside the record");
     require(static_cast<std::int64_t>(count) * strideVec4 * 16 <= lights.size(),
             "imperfect shadow maps: " + std::to_string(count) + " lights x " + std::to_string(strideVec4) +
                 " vec4s exceed the light buffer (" + std::to_string(lights.size()) + " bytes)");
@@ -123,6 +126,7 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     const gl::Program& splat = mSplat.program();
     splat.set("uCount", count);
     splat.set("uStride", strideVec4);
+    splat.set("uValidVec4", validVec4);
     splat.set("uPointsPerMap", mParams.pointsPerMap);
     splat.set("uPointCount", mPointCount);
     splat.set("uMapSize", mParams.mapSize);

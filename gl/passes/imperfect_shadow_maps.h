@@ -26,9 +26,10 @@
 //
 // Details
 // -------
-//  Lights: an SSBO of records of `stride` vec4s whose first two are (xyz position, w valid) and
-//  (xyz unit normal, w any): VSGL's VSGLight (6 vec4s) and SMCIR's GpuVPL (3) both start so. An
-//  invalid light (w = 0) gets an empty map (visible from everywhere).
+//  Lights: an SSBO of records of `stride` vec4s whose first two hold the xyz position and the xyz
+//  unit normal; the w of vec4 `validVec4` is 0 for an empty record, which gets an empty map
+//  (visible from everywhere): SMCIR's GpuVPL (3 vec4s, valid in the position's w: validVec4 0) and
+//  VSGL's VSGLight (6 vec4s, r^2 in the position's w, valid in the normal's: validVec4 1).
 //  Points: P = params.points (default 8192 x 64 = 524288, 8 MiB as vec4). Light i takes the run of
 //  pointsPerMap points starting at i * pointsPerMap mod P (wrapping), so P / pointsPerMap disjoint
 //  subsets; with VSGL's N = 1024 each serves 16 lights, which sit at other places and see the same
@@ -111,7 +112,7 @@ public:
     void setScene(const Scene& scene);
     // Rebuilds the maps of lights 0 .. count-1 (count <= maxLights) from `lights`, records of
     // `strideVec4` vec4s (>= 2) each (see Details). With a timer, each kernel is a scope.
-    void update(const gl::Buffer& lights, int count, int strideVec4, gl::PassTimer* timer = nullptr);
+    void update(const gl::Buffer& lights, int count, int strideVec4, int validVec4, gl::PassTimer* timer = nullptr);
     // Pull-push alone on the maps of lights 0 .. count-1 (update() runs it after the splat; tests
     // run it on maps they wrote).
     void fillHoles(int count, gl::PassTimer* timer = nullptr);

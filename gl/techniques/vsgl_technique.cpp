@@ -201,7 +201,8 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
             mISM = std::make_unique<ImperfectShadowMaps>(*mShaders, mParams.ism, mParams.count);
             mISM->setScene(*mScene);
         }
-        mISM->update(mLights, mParams.count, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)));
+        // VSGLight: r^2 in the position's w, the valid flag in the normal's (vec4 1).
+        mISM->update(mLights, mParams.count, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1);
     }
     {
         gl::PassTimer::Scope scope(frame.timer, "radiance estimation");

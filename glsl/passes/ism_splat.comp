@@ -21,11 +21,12 @@ layout(std430, binding = kBindingISMPoints) readonly buffer Points {
 };
 
 layout(std430, binding = kBindingISMLights) readonly buffer Lights {
-    vec4 lightRecords[]; // per light uStride vec4s: (position, valid), (unit normal, -), ...
+    vec4 lightRecords[]; // per light uStride vec4s: (position, -), (unit normal, -), ...; w of vec4 uValidVec4: valid
 };
 
 uniform int uCount;
 uniform int uStride;
+uniform int uValidVec4; // the record's vec4 whose w is 0 for an empty record
 uniform int uPointsPerMap;
 uniform int uPointCount;
 uniform int uMapSize;
@@ -36,8 +37,8 @@ void main()
     int first = int(gl_GlobalInvocationID.x) * ISM_POINTS_PER_INVOCATION;
     int light = int(gl_GlobalInvocationID.y);
     if (first >= uPointsPerMap || light >= uCount) return;
+    if (lightRecords[light * uStride + uValidVec4].w == 0.0) return;
     vec4 positionValid = lightRecords[light * uStride];
-    if (positionValid.w == 0.0) return;
     mat3 frame = lightViewBasis(lightRecords[light * uStride + 1].xyz);
     // The C++ side keeps lights * pointsPerMap below 2^32.
     uint start = (uint(light) * uint(uPointsPerMap)) % uint(uPointCount);

@@ -273,7 +273,7 @@ TEST_CASE("ISM: a wall between the lights and the receivers shadows them, withou
         const Scene scene = quadScene(quads);
         ImperfectShadowMaps ism(test::shaders(), params, 16);
         ism.setScene(scene);
-        ism.update(lightBuffer, 16, 2);
+        ism.update(lightBuffer, 16, 2, 0);
         const std::vector<float> v = probeVisibility(ism, lightBuffer, 16, receivers);
         const float lowest = *std::min_element(v.begin(), v.end());
         const float highest = *std::max_element(v.begin(), v.end());
@@ -289,7 +289,7 @@ TEST_CASE("ISM: a wall between the lights and the receivers shadows them, withou
     const gl::Buffer invalidBuffer = uploadLights(invalid);
     ImperfectShadowMaps ism(test::shaders(), params, 16);
     ism.setScene(quadScene({squareFacingDown(1.0f, 2.0f), squareFacingDown(0.5f, 1.0f)}));
-    ism.update(invalidBuffer, 16, 2);
+    ism.update(invalidBuffer, 16, 2, 0);
     const std::vector<float> map = readMap(ism, 2);
     CHECK(std::all_of(map.begin(), map.end(), [](float d) { return d == shared::kVPLNoOccluder; }));
 }
@@ -311,7 +311,7 @@ TEST_CASE("ISM: visibility in the Cornell box against Embree rays", "[gl][ism][n
         params.pullPushLevels = levels;
         ImperfectShadowMaps ism(test::shaders(), params, lightCount);
         ism.setScene(scene);
-        ism.update(lightBuffer, lightCount, 2);
+        ism.update(lightBuffer, lightCount, 2, 0);
         const Agreement a =
             compareWithEmbree(rays, lights, receivers, probeVisibility(ism, lightBuffer, lightCount, receivers));
         std::printf("ISM vs Embree, cornell, 64 surface lights x %zu camera receivers (%d facing pairs, %.3f "
@@ -388,7 +388,7 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
     params.pullPushLevels = 0;
     ImperfectShadowMaps ism(test::shaders(), params, 8);
     ism.setScene(scene);
-    ism.update(lightBuffer, 8, 2);
+    ism.update(lightBuffer, 8, 2, 0);
     const SurfacePoints points = sampleSurfacePoints(scene, params.points, params.seed);
     const int size = params.mapSize, tilesPerRow = ism.layout().tilesPerRow;
     int covered = 0, differ = 0;
@@ -496,7 +496,7 @@ TEST_CASE("ISM: the maps are bit-identical run to run", "[gl][ism][determinism]"
     const gl::Buffer lightBuffer = uploadLights(lights);
     ISMParams params;
     auto render = [&](ImperfectShadowMaps& ism) {
-        ism.update(lightBuffer, 32, 2);
+        ism.update(lightBuffer, 32, 2, 0);
         std::vector<float> all;
         for (int light = 0; light < 32; ++light) {
             const std::vector<float> map = readMap(ism, light);
@@ -559,7 +559,7 @@ TEST_CASE("ISM: parameters, limits and errors", "[gl][ism]")
     std::vector<LightRecord> sameLights(static_cast<std::size_t>(count),
                                         {glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)});
     const gl::Buffer manyBuffer = uploadLights(sameLights);
-    many.update(manyBuffer, count, 2);
+    many.update(manyBuffer, count, 2, 0);
     const std::vector<float> behindWall = probeVisibility(
         many, manyBuffer, count, {{glm::vec4(0.1f, 0.0f, 2.0f, 1.0f), glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)}});
     CHECK(behindWall.back() == 0.0f);
@@ -576,5 +576,5 @@ TEST_CASE("ISM: parameters, limits and errors", "[gl][ism]")
     CHECK_THROWS_AS(ImperfectShadowMaps(test::shaders(), bad, 4), Error);
     ImperfectShadowMaps noScene(test::shaders(), ISMParams{}, 4);
     const gl::Buffer lightBuffer = uploadLights(std::vector<LightRecord>(4));
-    CHECK_THROWS_AS(noScene.update(lightBuffer, 4, 2), Error);
+    CHECK_THROWS_AS(noScene.update(lightBuffer, 4, 2, 0), Error);
 }
