@@ -83,8 +83,13 @@ void main()
     float sharpness;
     toksvigDecode(lobe.xyz, axis, sharpness);
     light.positionRadius2 = vec4(position.xyz, uMode == 1 ? 0.0 : 2.0 * variance);
-    light.normalValid = vec4(normalize(normal.xyz), 1.0);
-    light.flux = vec4(flux.rgb * fluxScale, float(texel.z)); // w: the layer (its light: RSMLayerLight)
+    // The footprint's emission towards w is sum_k Phi_k cos(n_k, w) = Phi (n_mean . w): the mean
+    // normal keeps its length (|n_mean| < 1 where normals spread: normal maps, corners), which the
+    // unit normal of eq. (3)'s cosine drops, so the flux takes it (not in the paper: without it, the
+    // normal-mapped glossy room came out brighter than the VPLs from the same draws; docs/vsgl.md).
+    float normalLength = min(length(normal.xyz), 1.0);
+    light.normalValid = vec4(normal.xyz / length(normal.xyz), 1.0);
+    light.flux = vec4(flux.rgb * fluxScale * normalLength, float(texel.z)); // w: the layer (RSMLayerLight)
     light.diffuse = vec4(diffuse.rgb, specular.w);
     light.specular = vec4(specular.rgb, lobe.w);
     light.lobe = vec4(axis, sharpness);
