@@ -9,6 +9,7 @@
 #include "core/scene/surface_points.h"
 #include "core/util/error.h"
 #include "core/util/params.h"
+#include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/vpl.h"
 
@@ -18,14 +19,6 @@ namespace {
 
 // Points one splat invocation handles (passes/ism_splat.comp ISM_POINTS_PER_INVOCATION).
 constexpr int kSplatPointsPerInvocation = 8;
-
-int log2Exact(int n)
-{
-    int l = 0;
-    while ((1 << l) < n)
-        ++l;
-    return l;
-}
 
 // Level `level` of the maps at image unit `unit` as r32ui (the splat's atomics need an integer
 // format; r32f and r32ui are compatible by size, GL 4.5 section 8.26).
@@ -58,9 +51,9 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
     const std::string name = "imperfect shadow maps: ";
     require(params.mapSize >= 4 && params.mapSize <= 1024 && (params.mapSize & (params.mapSize - 1)) == 0,
             name + "map size " + std::to_string(params.mapSize) + " must be a power of two in [4, 1024]");
-    require(params.pullPushLevels >= 0 && params.pullPushLevels <= log2Exact(params.mapSize),
+    require(params.pullPushLevels >= 0 && params.pullPushLevels <= ceilLog2(params.mapSize),
             name + "pull-push levels " + std::to_string(params.pullPushLevels) + " outside [0, log2 " +
-                std::to_string(params.mapSize) + " = " + std::to_string(log2Exact(params.mapSize)) + "]");
+                std::to_string(params.mapSize) + " = " + std::to_string(ceilLog2(params.mapSize)) + "]");
     require(params.points >= 1 && params.points <= (1 << 24),
             name + "points " + std::to_string(params.points) + " outside [1, 2^24]");
     require(params.pointsPerMap >= 1 && params.pointsPerMap <= params.points,

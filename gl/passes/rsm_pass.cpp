@@ -5,6 +5,7 @@
 
 #include "core/util/error.h"
 #include "core/util/params.h"
+#include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/light_view.h"
 #include "glsl/shared/rsm.h"
@@ -22,11 +23,6 @@ namespace {
 gl::Program loadProgram(const gl::ShaderLoader& shaders)
 {
     return shaders.load("rsm", {{GL_VERTEX_SHADER, "passes/rsm.vert"}, {GL_FRAGMENT_SHADER, "passes/rsm.frag"}});
-}
-
-bool isPowerOfTwo(int n)
-{
-    return n > 0 && (n & (n - 1)) == 0;
 }
 
 float texelFactor(const glm::mat4& clipFromView, int size)
@@ -50,7 +46,7 @@ gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth)
 
 void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& target, gl::PassTimer* timer)
 {
-    const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(std::max(1, target.width()))) + 0.5);
+    const int levels = mipLevelCount(target.width());
     const int layers = target.color(0).desc().layers;
     for (int level = 1; level < levels; ++level) {
         const int size = std::max(1, target.width() >> level);
@@ -157,7 +153,7 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     gl::uploadVector(mLayerLights, "rsm layer lights", layerLights);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "rsm");
     mTarget.resize(params.size, params.size, layerCount());
-    mLevels = 1 + static_cast<int>(std::log2(static_cast<double>(params.size)) + 0.5);
+    mLevels = mipLevelCount(params.size);
     mTarget.bindForDrawing();
     mTarget.clear(glm::vec4(0.0f), 1.0f);
     glEnable(GL_DEPTH_TEST);

@@ -7,6 +7,7 @@
 
 #include "../api/debug.h"
 #include "core/util/error.h"
+#include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/shadow_atlas.h"
 #include "glsl/shared/vpl.h"
@@ -14,11 +15,6 @@
 namespace vplgi {
 
 namespace {
-
-bool isPowerOfTwo(int n)
-{
-    return n > 0 && (n & (n - 1)) == 0;
-}
 
 gl::Program loadProgram(const gl::ShaderLoader& shaders, const std::string& name)
 {

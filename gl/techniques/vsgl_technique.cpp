@@ -1,30 +1,16 @@
 #include "vsgl_technique.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/util/error.h"
 #include "core/util/params.h"
+#include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
 #include "glsl/shared/rsm.h"
 #include "glsl/shared/sg.h"
 
 namespace vplgi {
-
-namespace {
-
-bool isPowerOfTwo(int n)
-{
-    return n > 0 && (n & (n - 1)) == 0;
-}
-
-int levelsOf(int size)
-{
-    return 1 + static_cast<int>(std::log2(static_cast<double>(std::max(size, 1))) + 0.5);
-}
-
-} // namespace
 
 void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLights)
 {
@@ -131,7 +117,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         gl::PassTimer::Scope scope(frame.timer, "PDF of BRSMs");
         // 1. The G-buffer as the light: a grid in the RSM layout, its mips, level L's texels as lights.
         const int grid = mParams.viewGrid;
-        const int viewLevel = std::min(mParams.viewLevel, levelsOf(grid) - 1);
+        const int viewLevel = std::min(mParams.viewLevel, mipLevelCount(grid) - 1);
         mViewRSM.resize(grid, grid, 1);
         gbuffer.bindForReading();
         for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
@@ -149,7 +135,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uMode", 2);
         generate.set("uCount", mViewLightCount);
         generate.set("uSize", grid);
-        generate.set("uLevels", levelsOf(grid));
+        generate.set("uLevels", mipLevelCount(grid));
         generate.set("uLevel", viewLevel);
         generate.set("uSmoothness", mParams.smoothness);
         mGeneratePass.dispatch(mViewLightCount, 1, NextRead::StorageBuffer);

@@ -9,6 +9,7 @@
 #include "shared/bindings.h"
 #include "shared/rsm.h"
 #include "shared/sg.h"
+#include "shared/tonemap.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -45,7 +46,7 @@ void main()
         float cancelled;
         for (int k = 0; k < uViewCount; ++k) sum += vsglRadianceReceiver(receiver, viewLights[k], 0.0, cancelled);
         vec3 response = flux.rgb * sum;
-        importance = max(0.2126 * response.r + 0.7152 * response.g + 0.0722 * response.b, 0.0);
+        importance = max(luminanceRec709(response), 0.0);
         if (!(importance < 3.0e38)) importance = 0.0; // no NaN or Inf into the tables
     }
     imageStore(uImportance, at, vec4(importance, 0.0, 0.0, 0.0));

@@ -82,22 +82,31 @@ VPLGI_FUNC float ismVisibilityFromStored(float distanceToLight, float stored, fl
     return distanceToLight <= stored * (1.0f + depthBias) ? 1.0f : 0.0f;
 }
 
-// Pull: one coarser texel from its four finer ones (any order).
-VPLGI_FUNC float ismPull(vec4 finer, float depthRange)
+// The weighted mean of the valid values (those with weight > 0) within (1 + depthRange) times the
+// nearest of them; kVPLNoOccluder when none is valid. Pull and push both reduce to it.
+VPLGI_FUNC float ismNearMean(vec4 values, vec4 weights, float depthRange)
 {
-    float nearest = min(min(finer.x, finer.y), min(finer.z, finer.w));
+    float nearest = kVPLNoOccluder;
+    for (int i = 0; i < 4; ++i)
+        if (weights[i] > 0.0f) nearest = min(nearest, values[i]);
     if (!ismValid(nearest)) return kVPLNoOccluder;
     float limit = nearest * (1.0f + depthRange);
     float sum = 0.0f;
-    float count = 0.0f;
+    float weight = 0.0f;
     for (int i = 0; i < 4; ++i) {
-        float d = finer[i];
-        if (ismValid(d) && d <= limit) {
-            sum += d;
-            count += 1.0f;
+        float d = values[i];
+        if (weights[i] > 0.0f && ismValid(d) && d <= limit) {
+            sum += weights[i] * d;
+            weight += weights[i];
         }
     }
-    return sum / count;
+    return sum / weight;
+}
+
+// Pull: one coarser texel from its four finer ones (any order), equally weighted.
+VPLGI_FUNC float ismPull(vec4 finer, float depthRange)
+{
+    return ismNearMean(finer, vec4(1.0f), depthRange);
 }
 
 // Push: an empty finer texel from the four coarser texels around its centre, `coarser` with
@@ -106,21 +115,7 @@ VPLGI_FUNC float ismPull(vec4 finer, float depthRange)
 VPLGI_FUNC float ismPush(float own, vec4 coarser, vec4 weights, float depthRange)
 {
     if (ismValid(own)) return own;
-    float nearest = kVPLNoOccluder;
-    for (int i = 0; i < 4; ++i)
-        if (weights[i] > 0.0f) nearest = min(nearest, coarser[i]);
-    if (!ismValid(nearest)) return kVPLNoOccluder;
-    float limit = nearest * (1.0f + depthRange);
-    float sum = 0.0f;
-    float weight = 0.0f;
-    for (int i = 0; i < 4; ++i) {
-        float d = coarser[i];
-        if (weights[i] > 0.0f && ismValid(d) && d <= limit) {
-            sum += weights[i] * d;
-            weight += weights[i];
-        }
-    }
-    return sum / weight;
+    return ismNearMean(coarser, weights, depthRange);
 }
 
 // The coarser texel (in the coarser level's tile, size coarseSize) that finer texel `finer` reads
