@@ -1,0 +1,133 @@
+// LightSkin light caches: the precomputed surface samples that gather indirect light as proxy lights
+// and hand it on to the pixels (paper 004 section 3, "Cache Distribution"; issue 11 part 1).
+//
+// Intro. LightSkin lights a few thousand caches spread over the scene instead of every pixel, then
+// interpolates the caches' proxy lights to the pixels (eq. 8-9). A cache is a position, a normal, the
+// area it represents (a Voronoi cell of the surface; the occlusion estimate turns it into a disk) and
+// the mean reflectance of that surface. The two controls are the paper's: d_eps, the largest distance
+// between a cache and the surface points it represents, and theta_eps, the largest angle between
+// their normals.
+//
+// Overview (paper steps 1-5, per instance in world space; light_caches.cpp explains each choice):
+//  1. Voxelise at edge d_eps / 2: clip every triangle against a grid of edge d_eps / 4 (exact pieces,
+//     each with an area, centroid and geometric normal); a piece belongs to the d_eps / 2 voxel
+//     holding its centroid.
+//  2. Bin the pieces' normals per voxel: cube-map faces x 8 x 8 direction bins.
+//  3. Per voxel, while pieces remain: take the bin with the largest area; the cache is the
+//     area-weighted mean position and normal of the remaining pieces within theta_eps of that bin's
+//     centre normal (and the bin's own pieces); remove them.
+//  4. Snap (optional): move each cache to the nearest point of the pieces it averaged.
+//  5. Join (optional): merge caches closer than d_eps / 4 whose normals differ by less than theta_eps.
+//  Area: every piece goes to the nearest cache within theta_eps of its normal (else the nearest
+//  facing one, else the nearest); a cache's area is the sum of its pieces' areas.
+//
+// Per model: the paper distributes per model in model space; our scenes are instances of meshes, so
+// caches are distributed per instance in world space, and the disk cache is keyed by the hash of the
+// mesh's positions and indices, the instance transform and the resolved parameters.
+//
+// References: Lensing & Broll 2013 (LightSkin), Lensing 2014 (thesis); the BRSM + LightSkin paper in
+// ../shared/papers/004_e7a2a609166487da.txt; ../shared/MATH.md section 9.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene/scene.h"
+#include "core/util/params.h"
+#include "core/util/progress.h"
+#include "glsl/shared/light_cache_lookup.h"
+
+namespace vplgi {
+
+struct LightCacheParams {
+    // d_eps [m]; 0: automatic, d_eps = 2 sqrt(A / 4096) for the scene's total triangle area A,
+    // rounded to two significant digits (a flat scene of area A then gets about 4096 caches; see
+    // resolveLightCacheDistance).
+    float distance = 0.0f;
+    // theta_eps [degrees]. The paper gives no value. 30: the caches of two faces meeting at 90 degrees
+    // (the corners of our architectural scenes) never mix (that needs an angle >= 45), a tessellated
+    // curve of radius R merges into one cache per voxel once R > about 2 voxel edges, and the
+    // cos(n_x, n_c) factor of eq. (8) stays above cos 30 = 0.87 for the surface a cache averaged.
+    float angleDegrees = 30.0f;
+    bool snap = true; // step 4: move each cache onto the surface it averaged
+    bool join = true; // step 5: merge near-duplicate caches of neighbouring voxels
+    void visitParams(ParamVisitor& visitor);
+};
+
+struct LightCache {          // world space; two vec4 rows each, std430-friendly (64 bytes)
+    glm::vec3 position{0.0f}; float area = 0.0f;      // area: the surface it represents (Voronoi) [m^2]
+    glm::vec3 normal{0.0f, 1.0f, 0.0f}; float roughness = 1.0f; // unit normal; perceptual roughness
+    glm::vec3 diffuse{0.0f}; float metallic = 0.0f;   // (1 - metallic) baseColor (see below)
+    glm::vec3 specular{0.0f}; float pad = 0.0f;       // F0 = mix(0.04 specular, baseColor, metallic)
+};
+static_assert(sizeof(LightCache) == 64, "LightCache is four vec4 rows");
+// Material columns: an instance has one mesh and a mesh one material, so every cache of an instance
+// has that material, untextured: the material factors times the means of their textures
+// (computeUntexturedMaterials, the same table SMCIR's untextured VPLs use).
+
+struct LightCacheGrid {      // uniform grid for the per-pixel lookup of the nearest caches
+    glm::vec3 origin{0.0f}; float cellSize = 1.0f; // cellSize = d_eps, grown when > kMaxLightCacheGridCells
+    glm::ivec3 dims{0};
+    std::vector<std::uint32_t> cellStart;    // dims.x*dims.y*dims.z + 1 offsets into cacheIndices
+    std::vector<std::uint32_t> cacheIndices; // caches of each cell, sorted by index
+};
+constexpr std::int64_t kMaxLightCacheGridCells = std::int64_t(1) << 22; // 4M cells: 16 MiB of offsets
+
+struct LightCacheSet {
+    std::vector<LightCache> caches;
+    LightCacheGrid grid;
+    float distance = 0;                        // the d_eps used [m] (resolved when params.distance = 0)
+    std::vector<std::uint32_t> instanceStart;  // caches of instance i: [instanceStart[i], instanceStart[i+1])
+    int instancesLoaded = 0;                   // instances read from the disk cache
+    int instancesComputed = 0;                 // instances distributed (and written when a cacheDir is given)
+};
+
+// The d_eps that `params` ask for on `scene`: params.distance, or the automatic rule above when it is 0.
+// Throws Error when the rule is needed and the scene has no triangle of positive area.
+float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& params);
+
+// Distributes caches over every instance's triangles (see "per model" above), with progress
+// ("lightskin caches", instances done / total), reading and writing the on-disk cache under
+// `cacheDir` ("" = no disk cache): cacheDir/lightskin/<hex>.bin per instance. A missing, corrupt or
+// truncated file is recomputed (a warning on stderr for the last two); a file that cannot be written
+// is a warning, not an error. Deterministic: the same input gives the same bits at any TBB thread count.
+LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params,
+                                    const ProgressSink& progress, const std::string& cacheDir);
+
+// Builds `set.grid` over set.caches with cell size `cellSize` (grown until the cell count is at most
+// kMaxLightCacheGridCells). distributeLightCaches calls it with d_eps.
+void buildLightCacheGrid(LightCacheSet& set, float cellSize);
+
+// Readers for glsl/shared/light_cache_lookup.h (found by argument-dependent lookup).
+inline std::uint32_t lightCacheCellStart(const LightCacheSet& set, int cell)
+{
+    return set.grid.cellStart[static_cast<std::size_t>(cell)];
+}
+inline std::uint32_t lightCacheIndex(const LightCacheSet& set, int i)
+{
+    return set.grid.cacheIndices[static_cast<std::size_t>(i)];
+}
+inline glm::vec3 lightCachePosition(const LightCacheSet& set, int cache)
+{
+    return set.caches[static_cast<std::size_t>(cache)].position;
+}
+inline glm::vec3 lightCacheNormal(const LightCacheSet& set, int cache)
+{
+    return set.caches[static_cast<std::size_t>(cache)].normal;
+}
+
+// The k <= 16 nearest caches to x facing n (n . n_c > 0) within the grid's cell size, nearest first
+// (the C++ instance of glsl/shared/light_cache_lookup.h). Returns out.count.
+inline int nearestLightCaches(const LightCacheSet& set, const glm::vec3& x, const glm::vec3& n,
+                              shared::LightCacheNeighbours& out, int k = shared::kMaxLightCacheNeighbours)
+{
+    out.count = 0;
+    if (set.grid.cellStart.empty()) return 0;
+    shared::findNearestLightCaches(set, set.grid.origin, set.grid.cellSize, set.grid.dims, x, n, k, out);
+    return out.count;
+}
+
+} // namespace vplgi
