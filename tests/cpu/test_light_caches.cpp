@@ -229,7 +229,7 @@ TEST_CASE("light caches: a closed box gets the plane count per face and no cache
     CHECK(coarse.caches.size() == 6u * 14u * 14u);
 }
 
-TEST_CASE("light caches: areas sum to the surface area; snapped caches lie on the surface", "[lightskin][caches]")
+TEST_CASE("light caches: areas sum to the surface area, snapped caches lie on the surface", "[lightskin][caches]")
 {
     SECTION("cornell, automatic d_eps, per instance")
     {
