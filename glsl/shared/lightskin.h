@@ -126,10 +126,12 @@ VPLGI_FUNC vec3 mirrorDirection(vec3 w, vec3 n)
 // matches exp(-n theta_h^2 / 2) at k = n/4. Chosen by measured error against the exact GGX lobe
 // D V (F = 1) times cos over alpha 0.05..1 and views 0, 30, 60 degrees: n/4 has the smallest summed
 // shape error of n/4, n/(4 cos theta_v) and n (tests/cpu/test_lightskin_math.cpp "GGX to Phong",
-// table in docs/lightskin.md). k = 0 at alpha = 1.
+// table in docs/lightskin.md). k = 0 at alpha = 1; alpha is held at brdf.h's kMinAlpha (k = 125000)
+// as the BRDF holds it, so a mirror gets a finite exponent.
 VPLGI_FUNC float phongExponentFromRoughness(float alpha)
 {
-    return max(0.5f / (alpha * alpha) - 0.5f, 0.0f);
+    float a = max(alpha, kMinAlpha);
+    return max(0.5f / (a * a) - 0.5f, 0.0f);
 }
 
 // cos+^k: 0 for cosine <= 0 (also at k = 0, where the lobe is the hemisphere's constant).
@@ -274,10 +276,12 @@ VPLGI_FUNC float valImportance(float fluxLuminance, vec3 valPosition, vec3 valNo
 
 // --- Halton view samples (MATH 9.8) ---------------------------------------------------------------
 
-// The radical inverse phi_b(index) (digits of index in base b mirrored after the point), b >= 2:
-// phi_2(1, 2, 3) = 1/2, 1/4, 3/4; phi_3(1, 2, 3) = 1/3, 2/3, 1/9.
+// The radical inverse phi_b(index) (digits of index in base b mirrored after the point):
+// phi_2(1, 2, 3) = 1/2, 1/4, 3/4; phi_3(1, 2, 3) = 1/3, 2/3, 1/9. A base below 2 gives 0 (the loop
+// would never end).
 VPLGI_FUNC float halton(uint index, uint base)
 {
+    if (base < 2u) return 0.0f;
     float inverseBase = 1.0f / float(base);
     float scale = inverseBase;
     float result = 0.0f;
