@@ -218,6 +218,9 @@ VPLGI_CONST float kProxyMinDenominator = 1.0e-6f;
 // brdf: the cache's f_r towards w_i (rho_d/pi, or phongBRDF). A channel whose brdf, or a cosine, is
 // below kProxyMinDenominator gets 0. The isotropic point light Phi_p/(4 pi) at x_p then reproduces
 // `radiance` at c exactly (pointLightRadiance).
+// The cache's reflectance cancels (MATH 9.4): evaluating eq. (3)/(4) with rho = 1 and passing
+// brdf = 1/pi (or phongBRDF(vec3(1), ...)) gives the same flux, and keeps the light a cache passes
+// on to pixels in a channel where the cache's own colour is 0 (which would otherwise give 0 there).
 VPLGI_FUNC vec3 proxyFluxFromRadiance(vec3 radiance, float distance2, vec3 brdf, float cosCache)
 {
     if (!(cosCache > kProxyMinDenominator)) return vec3(0.0f);
