@@ -126,10 +126,12 @@ VPLGI_FUNC vec3 mirrorDirection(vec3 w, vec3 n)
 // matches exp(-n theta_h^2 / 2) at k = n/4. Chosen by measured error against the exact GGX lobe
 // D V (F = 1) times cos over alpha 0.05..1 and views 0, 30, 60 degrees: n/4 has the smallest summed
 // shape error of n/4, n/(4 cos theta_v) and n (tests/cpu/test_lightskin_math.cpp "GGX to Phong",
-// table in docs/lightskin.md). k = 0 at alpha = 1.
+// table in docs/lightskin.md). k = 0 at alpha = 1; alpha is held at brdf.h's kMinAlpha (k = 125000)
+// as the BRDF holds it, so a mirror gets a finite exponent.
 VPLGI_FUNC float phongExponentFromRoughness(float alpha)
 {
-    return max(0.5f / (alpha * alpha) - 0.5f, 0.0f);
+    float a = max(alpha, kMinAlpha);
+    return max(0.5f / (a * a) - 0.5f, 0.0f);
 }
 
 // cos+^k: 0 for cosine <= 0 (also at k = 0, where the lobe is the hemisphere's constant).
@@ -216,6 +218,9 @@ VPLGI_CONST float kProxyMinDenominator = 1.0e-6f;
 // brdf: the cache's f_r towards w_i (rho_d/pi, or phongBRDF). A channel whose brdf, or a cosine, is
 // below kProxyMinDenominator gets 0. The isotropic point light Phi_p/(4 pi) at x_p then reproduces
 // `radiance` at c exactly (pointLightRadiance).
+// The cache's reflectance cancels (MATH 9.4): evaluating eq. (3)/(4) with rho = 1 and passing
+// brdf = 1/pi (or phongBRDF(vec3(1), ...)) gives the same flux, and keeps the light a cache passes
+// on to pixels in a channel where the cache's own colour is 0 (which would otherwise give 0 there).
 VPLGI_FUNC vec3 proxyFluxFromRadiance(vec3 radiance, float distance2, vec3 brdf, float cosCache)
 {
     if (!(cosCache > kProxyMinDenominator)) return vec3(0.0f);
@@ -274,10 +279,12 @@ VPLGI_FUNC float valImportance(float fluxLuminance, vec3 valPosition, vec3 valNo
 
 // --- Halton view samples (MATH 9.8) ---------------------------------------------------------------
 
-// The radical inverse phi_b(index) (digits of index in base b mirrored after the point), b >= 2:
-// phi_2(1, 2, 3) = 1/2, 1/4, 3/4; phi_3(1, 2, 3) = 1/3, 2/3, 1/9.
+// The radical inverse phi_b(index) (digits of index in base b mirrored after the point):
+// phi_2(1, 2, 3) = 1/2, 1/4, 3/4; phi_3(1, 2, 3) = 1/3, 2/3, 1/9. A base below 2 gives 0 (the loop
+// would never end).
 VPLGI_FUNC float halton(uint index, uint base)
 {
+    if (base < 2u) return 0.0f;
     float inverseBase = 1.0f / float(base);
     float scale = inverseBase;
     float result = 0.0f;

@@ -649,6 +649,8 @@ TEST_CASE("LightSkin Halton view samples: the radical inverses of MATH 9.8", "[l
     for (unsigned i = 1; i <= 8; ++i)
         CHECK(halton(i, 3u) == Approx(base3[i - 1]).epsilon(1e-6));
     CHECK(halton(0u, 2u) == 0.0f);
+    CHECK(halton(5u, 1u) == 0.0f); // no endless loop on a bad base
+    CHECK(halton(5u, 0u) == 0.0f);
     CHECK(halton(511u, 2u) == Approx(511.0 / 512.0).epsilon(1e-7)); // 111111111 -> 0.111111111
     // The paper's Fig. 2 view buffer, 1024 x 768: sample 1 is its centre column, a third of the way up.
     CHECK(haltonViewPixel(1u, 1024, 768) == glm::ivec2(512, 256));
@@ -914,8 +916,10 @@ TEST_CASE("GGX to Phong: the exponent mapping by measured lobe error per roughne
     }
     MEASURED("GGX vs Phong: summed shape L2 over the 21 rows: n/4 " << shapeSum[0] << ", n/(4 cos theta_v) "
                                                                     << shapeSum[1] << ", n " << shapeSum[2]);
-    CHECK(chosenMatches == 7);        // phongExponentFromRoughness is n/4 ...
-    CHECK(shapeSum[0] < shapeSum[1]); // ... because it measures best
+    CHECK(chosenMatches == 7);
+    CHECK(phongExponentFromRoughness(0.0f) == phongExponentFromRoughness(kMinAlpha)); // finite for a mirror
+    CHECK(std::isfinite(phongExponentFromRoughness(0.0f))); // phongExponentFromRoughness is n/4 ...
+    CHECK(shapeSum[0] < shapeSum[1]);                       // ... because it measures best
     CHECK(shapeSum[0] < shapeSum[2]);
     // Measured worst shape error of n/4: 0.68 (alpha = 1, view 60: GGX's lobe leans towards grazing,
     // which a lobe symmetric about the mirror direction cannot follow); bound about 1.5x.
