@@ -46,8 +46,15 @@ void main()
     for (int j = int(lane); j < uCacheCount; j += kLightSkinGroupSize) {
         GpuLightCache o = caches[j];
         bool candidates[2];
+        // A disk can only block the segment from the cache to the proxy if the segment crosses the
+        // disk's plane: the cache and the proxy's centre on opposite sides (not in the paper; without
+        // it the floor between a lit floor patch and a wall occludes the wall's light,
+        // docs/lightskin.md).
+        vec3 on = o.normalRoughness.xyz;
+        float cacheSide = dot(on, cp - o.positionArea.xyz);
         for (int p = 0; p < 2; ++p)
-            candidates[p] = isOccluderCandidate(cache, cp, cn, j, o.positionArea.xyz, proxyDistance2[p]);
+            candidates[p] = isOccluderCandidate(cache, cp, cn, j, o.positionArea.xyz, proxyDistance2[p]) &&
+                            cacheSide * dot(on, spheres[p].xyz - o.positionArea.xyz) < 0.0;
         if (!candidates[0] && !candidates[1]) continue;
         vec3 square = projectDiskToUnitDisk(o.positionArea.xyz - cp, o.normalRoughness.xyz, o.positionArea.w, diskFrame);
         for (int p = 0; p < 2; ++p)
