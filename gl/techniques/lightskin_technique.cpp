@@ -215,6 +215,14 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
                                            : mParams.seed;
             mSampler->sample(mImportance, mParams.valCount, seed, NextRead::StorageBuffer);
         }
+        // The importance view's range: 20x the mean texel importance, read back only while it is shown.
+        if (frame.display == std::string(name()) + ".importance") {
+            float total = 0.0f;
+            glGetNamedBufferSubData(mSampler->marginal().id(),
+                                    static_cast<GLintptr>((size * layers - 1) * static_cast<int>(sizeof(float))),
+                                    sizeof(float), &total);
+            mImportanceRange = 20.0f * total / static_cast<float>(size * size * layers);
+        }
         // The selected texels for the debug view (a few thousand image stores).
         if (frame.display == std::string(name()) + ".selected") {
             const float zero = 0.0f;
@@ -308,7 +316,8 @@ std::vector<DebugView> LightSkinTechnique::debugViews() const
                      mCacheView ? &mCacheView.color(0) : nullptr, shared::kDebugViewColor});
     if (!mFull) {
         views.push_back({t + ".importance", "eq. (10): importance of every RSM texel, layers side by side",
-                         mImportance ? &mImportance : nullptr, shared::kDebugViewCount, {0.0f, 1.0f}});
+                         mImportance ? &mImportance : nullptr, shared::kDebugViewCount,
+                         {0.0f, mImportanceRange > 0.0f ? mImportanceRange : 1.0f}});
         views.push_back({t + ".selected", "the VALs selected this frame (1), layers side by side",
                          mSelected ? &mSelected : nullptr, shared::kDebugViewScalar, {0.0f, 1.0f}});
     }

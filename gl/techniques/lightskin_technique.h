@@ -139,6 +139,7 @@ private:
     gl::RenderTarget mCacheView; // the caches as points (debug view)
     gl::RenderTarget mShaded;
     long long mVALsPerCache = 0;
+    float mImportanceRange = 1.0f; // of the importance view: 20x the mean texel importance
 };
 
 } // namespace vplgi
