@@ -74,7 +74,8 @@ void LightSkinTechnique::createPasses(const gl::ShaderLoader& shaders)
     mViewSamplePass = ComputePass(shaders, "view samples", "passes/lightskin_view_samples.comp");
     mImportancePass = ComputePass(shaders, "VAL importance", "passes/lightskin_importance.comp");
     mMarkPass = ComputePass(shaders, "selected VALs", "passes/lightskin_mark_selected.comp");
-    mProxyPass = ComputePass(shaders, "proxy lights", "passes/lightskin_proxy.comp");
+    mProxyPass = ComputePass(shaders, "proxy sums", "passes/lightskin_proxy.comp");
+    mFinalizePass = ComputePass(shaders, "proxy lights from sums", "passes/lightskin_proxy_finalize.comp");
     mOcclusionPass = ComputePass(shaders, "double projection", "passes/lightskin_occlusion.comp");
     mShading = std::make_unique<FullscreenPass>(shaders, "interpolation", "passes/lightskin_shading.frag");
     mCacheViewProgram = shaders.load("LightSkin cache view", {{GL_VERTEX_SHADER, "passes/lightskin_caches.vert"},
@@ -239,17 +240,33 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     bindStorageBuffer(shared::kBindingProxyLights, mProxies);
     {
         gl::PassTimer::Scope scope(frame.timer, "proxy lights");
+        // The VALs in chunks of at most 64 x 16384 (lightskin_proxy.comp says why), at most 64
+        // chunks while that suffices; one chunk for the selected few thousand.
+        const int group = shared::kLightSkinGroupSize;
+        const int perLane = std::clamp((valCount + group * 64 - 1) / (group * 64), 256, 16384);
+        const int chunkSize = group * perLane;
+        const int chunks = (valCount + chunkSize - 1) / chunkSize;
+        const auto sumBytes = static_cast<GLsizeiptr>(cacheCount) * chunks * shared::kProxySumVec4s *
+                              static_cast<GLsizeiptr>(sizeof(glm::vec4));
+        if (mProxySums.size() < sumBytes) mProxySums = gl::Buffer("proxy sums", sumBytes);
         if (!mFull) bindStorageBuffer(shared::kBindingImportanceSamples, mSampler->samples());
+        bindStorageBuffer(shared::kBindingProxySums, mProxySums);
         const gl::Program& proxy = mProxyPass.program();
         proxy.set("uAllTexels", mFull ? 1 : 0);
         proxy.set("uValCount", valCount);
         proxy.set("uSelectionCount", mParams.valCount);
         proxy.set("uSize", size);
         proxy.set("uCacheCount", cacheCount);
+        proxy.set("uChunkSize", chunkSize);
         proxy.set("uEpsilon", mParams.weightEpsilon);
         proxy.set("uFluxWeights", mParams.fluxWeights ? 1 : 0);
         proxy.set("uExactArea", mParams.exactArea ? 1 : 0);
-        mProxyPass.dispatch(perCacheInvocations(cacheCount), NextRead::StorageBuffer);
+        glm::ivec3 invocations = perCacheInvocations(cacheCount);
+        invocations.x *= chunks;
+        mProxyPass.dispatch(invocations, NextRead::StorageBuffer);
+        mFinalizePass.program().set("uCacheCount", cacheCount);
+        mFinalizePass.program().set("uChunks", chunks);
+        mFinalizePass.dispatch(cacheCount, 1, NextRead::StorageBuffer);
     }
     if (mParams.occlusion) {
         gl::PassTimer::Scope scope(frame.timer, "occlusion");

@@ -23,8 +23,9 @@
 //                  samples); lightskin_importance.comp: eq. (10)-(11) for every RSM texel
 //  SAT             ImportanceSampler::build: the cumulative sums, vertically then horizontally
 //  selection       ImportanceSampler::sample: binary search for N_sVAL texels (eq. 12)
-//  proxy lights    lightskin_proxy.comp: per cache, the selected VALs (or all: lightskin-full) into
-//                  the diffuse and glossy proxy lights (eq. 13-15, 6, 7)
+//  proxy lights    lightskin_proxy.comp: per cache and chunk of VALs, the sums of the selected VALs
+//                  (or all: lightskin-full); lightskin_proxy_finalize.comp: the diffuse and glossy
+//                  proxy lights from them (eq. 13-15, 6, 7)
 //  occlusion       lightskin_occlusion.comp: double projection of the proxies' bounding spheres and
 //                  the other caches' disks (section 3, "Occlusion"); lightskin.occlusion=false skips it
 //  interpolation   lightskin_shading.frag: every pixel finds its <= 16 nearest caches, interpolates
@@ -123,7 +124,8 @@ private:
     ComputePass mViewSamplePass;
     ComputePass mImportancePass;
     ComputePass mMarkPass;
-    ComputePass mProxyPass;
+    ComputePass mProxyPass;    // the sums per (cache, chunk of VALs)
+    ComputePass mFinalizePass; // the proxies from the sums
     ComputePass mOcclusionPass;
     std::unique_ptr<FullscreenPass> mShading;
     gl::Program mCacheViewProgram;
@@ -132,6 +134,7 @@ private:
     gl::Buffer mCellBuffer;      // uint[cells + 1]
     gl::Buffer mIndexBuffer;     // uint[entries]
     gl::Buffer mProxies;         // ProxyLight[caches]
+    gl::Buffer mProxySums;       // vec4[caches x chunks x kProxySumVec4s]
     gl::Buffer mViewSamples;     // ViewSample[N_VS]
     gl::Buffer mLayerViews;      // RSMLayerView[layers]
     gl::Texture mImportance;     // R32F, (rsm.size x layers) x rsm.size

@@ -8,8 +8,14 @@
 //   flux      Phi_p = 4 pi L_o(c) |x_p - c|^2 / (f_r(c, w, w_i) cos+)  eq. (7), L_o from eq. (14)/(15)
 // The cache's albedo cancels between eq. (14)/(15) and eq. (7) (MATH.md 9.4), and so does the
 // glossy colour and the Phong normalisation (k + 2)/(2 pi): the sums below leave them out.
-// Each invocation takes every 64th VAL; the sums are then reduced in shared memory in a fixed
-// tree order, so the result is the same on every run and thread count.
+// This pass makes the sums: one work-group per (cache, chunk of VALs), each invocation takes every
+// 64th VAL of the chunk, and the group reduces its sums in shared memory in a fixed tree order
+// into ProxySums[cache * chunks + chunk]. lightskin_proxy_finalize.comp adds the chunks of a cache
+// in order and turns the sums into the two proxies, so the result is the same on every run and
+// thread count. Why chunks: llvmpipe ends a shader invocation's loops after 65535 iterations in
+// all (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop in a shader"), which one
+// loop over a 2048^2 RSM (65536 texels per invocation) exceeds: lightskin-full at 2048^2 silently
+// dropped texels before the split. Chunks also give a GPU more work-groups to spread.
 #include "../shared/bindings.h"
 #define VPLGI_IMPORTANCE_TYPES_ONLY
 #include "../shared/importance.h"
@@ -26,19 +32,20 @@ layout(std430, binding = kBindingImportanceSamples) readonly buffer Draws { Impo
 layout(std430, binding = kBindingRSMLayerViews) readonly buffer Views { RSMLayerView views[]; };
 layout(std430, binding = kBindingRSMLayers) readonly buffer Layers { RSMLayerLight layerLights[]; };
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
-layout(std430, binding = kBindingProxyLights) writeonly buffer Proxies { ProxyLight proxies[]; };
+layout(std430, binding = kBindingProxySums) writeonly buffer Sums { vec4 partialSums[]; }; // kProxySumVec4s per (cache, chunk)
 
 uniform int uAllTexels;      // 1: every RSM texel (lightskin-full), 0: the selected draws
 uniform int uValCount;       // texels (all layers) or draws
 uniform int uSelectionCount; // N_sVAL
 uniform int uSize;           // RSM edge [texels]
 uniform int uCacheCount;
+uniform int uChunkSize;      // VALs per chunk (a multiple of the group size)
 uniform float uEpsilon;      // epsilon_p of eq. (6)
 uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too (MATH.md 9.3 option)
 uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
 
 // Per proxy: sum w, sum w v (3), sum w v^2 (3), radiance sum (3), v = x_l - c.
-const int kSums = 10;
+const int kSums = 10; // per proxy: 2 kSums floats = kProxySumVec4s vec4s
 shared float sSums[2 * kSums][kLightSkinGroupSize];
 
 void main()
@@ -55,7 +62,9 @@ void main()
 
     float sums[2 * kSums];
     for (int s = 0; s < 2 * kSums; ++s) sums[s] = 0.0;
-    for (int j = int(lane); j < uValCount; j += kLightSkinGroupSize) {
+    int chunk = int(gl_WorkGroupID.x);
+    int chunkEnd = min((chunk + 1) * uChunkSize, uValCount);
+    for (int j = chunk * uChunkSize + int(lane); j < chunkEnd; j += kLightSkinGroupSize) {
         ivec3 texel;
         float selection; // P_VAL: the expected number of times the VAL is drawn
         if (uAllTexels != 0) {
@@ -113,30 +122,8 @@ void main()
         barrier();
     }
     if (lane != 0u) return;
-
-    ProxyLight proxy;
-    for (int p = 0; p < 2; ++p) {
-        int o = p * kSums;
-        float w = sSums[o][0];
-        vec3 offsetSum = vec3(sSums[o + 1][0], sSums[o + 2][0], sSums[o + 3][0]);
-        vec3 squaredOffsetSum = vec3(sSums[o + 4][0], sSums[o + 5][0], sSums[o + 6][0]);
-        vec3 mean = w > 0.0 ? offsetSum / w : cn; // no VAL at all (epsilon 0): 1 m above the cache, no flux
-        vec3 radiance = vec3(sSums[o + 7][0], sSums[o + 8][0], sSums[o + 9][0]);
-        float distance2 = dot(mean, mean);
-        vec3 toProxy = distance2 > 0.0 ? mean * inversesqrt(distance2) : cn;
-        float cosCache = dot(cn, toProxy);
-        // f_r of eq. (7) without the colours that cancelled: 1 for the diffuse proxy, cos^k theta_e
-        // towards the proxy for the glossy one.
-        float brdf = p == 0 ? 1.0 : phongLobe(dot(view, mirrorDirection(toProxy, cn)), k);
-        vec3 flux = proxyFluxFromRadiance(radiance, distance2, vec3(brdf), cosCache);
-        vec4 positionRadius = vec4(cp + mean, proxySphereRadius(w, offsetSum, squaredOffsetSum));
-        if (p == 0) {
-            proxy.diffusePositionRadius = positionRadius;
-            proxy.diffuseFlux = vec4(flux, 1.0);
-        } else {
-            proxy.glossyPositionRadius = positionRadius;
-            proxy.glossyFlux = vec4(flux, 1.0);
-        }
-    }
-    proxies[cache] = proxy;
+    int chunks = int(gl_NumWorkGroups.x);
+    int at = (cache * chunks + chunk) * kProxySumVec4s;
+    for (int v = 0; v < kProxySumVec4s; ++v)
+        partialSums[at + v] = vec4(sSums[4 * v][0], sSums[4 * v + 1][0], sSums[4 * v + 2][0], sSums[4 * v + 3][0]);
 }

@@ -42,6 +42,7 @@ VPLGI_CONST int kBindingLightCacheIndices = 19;  // SSBO uint[]: cache indices, 
 VPLGI_CONST int kBindingProxyLights = 20;        // SSBO ProxyLight[]: per cache, diffuse and glossy
 VPLGI_CONST int kBindingViewSamples = 21;        // SSBO ViewSample[]: G-buffer samples at Halton points
 VPLGI_CONST int kBindingRSMLayerViews = 22;      // SSBO RSMLayerView[]: each RSM layer's depth row and texel size
+VPLGI_CONST int kBindingProxySums = 23;          // SSBO vec4[]: the proxy pass's sums per (cache, chunk of VALs)
 
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler

@@ -37,6 +37,7 @@ struct RSMLayerView {
                    // y 1 for an orthographic (directional) layer, zw unused
 };
 
+VPLGI_CONST int kProxySumVec4s = 5;        // the proxy pass's 20 sums per (cache, chunk) (lightskin_proxy.comp)
 VPLGI_CONST int kLightSkinGroupSize = 64;   // invocations per cache in the proxy and occlusion passes
 VPLGI_CONST int kLightSkinGroupRows = 32768; // caches per dispatch row (y); more go to z
 
