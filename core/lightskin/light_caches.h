@@ -21,6 +21,9 @@
 //  Area: every piece goes to the nearest cache within theta_eps of its normal (else the nearest
 //  facing one, else the nearest); a cache's area is the sum of its pieces' areas.
 //
+// Double-sided materials get each cache twice, once per side (normal and area the same, the normal
+// negated), as the G-buffer shows them from both sides.
+//
 // Per model: the paper distributes per model in model space; our scenes are instances of meshes, so
 // caches are distributed per instance in world space, and the disk cache is keyed by the hash of the
 // mesh's positions and indices, the instance transform and the resolved parameters.
@@ -43,8 +46,8 @@
 namespace vplgi {
 
 struct LightCacheParams {
-    // d_eps [m]; 0: automatic, d_eps = 2 sqrt(A / 4096) for the scene's total triangle area A,
-    // rounded to two significant digits (a flat scene of area A then gets about 4096 caches; see
+    // d_eps [m]; 0: automatic, d_eps = 2 sqrt(A / 2048) for the scene's total triangle area A,
+    // rounded to two significant digits (a flat scene of area A then gets about 2048 caches; see
     // resolveLightCacheDistance).
     float distance = 0.0f;
     // theta_eps [degrees]. The paper gives no value. 30: the caches of two faces meeting at 90 degrees

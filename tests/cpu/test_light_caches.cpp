@@ -179,6 +179,31 @@ TEST_CASE("light caches: a plane gets one cache per d_eps/2 voxel, its normal, i
         }
 }
 
+TEST_CASE("light caches: a double-sided plane gets each cache on both sides; a tiny d_eps is refused",
+          "[lightskin][caches]")
+{
+    Mesh mesh;
+    addRect(mesh, glm::vec3(0.0f), glm::vec3(2, 0, 0), glm::vec3(0, 0, -1), 3, 2); // 2 x 1 m, faces +y
+    Scene scene = sceneOf(mesh, glm::mat4(1.0f));
+    const std::size_t oneSided = distribute(scene, paramsWith(0.5f)).caches.size();
+    CHECK(oneSided == 32u); // (2W/d)(2H/d) = 8 x 4
+    scene.materials[0].doubleSided = true;
+    const LightCacheSet set = distribute(scene, paramsWith(0.5f));
+    REQUIRE(set.caches.size() == 2 * oneSided);
+    int up = 0, down = 0;
+    for (const LightCache& c : set.caches) {
+        up += c.normal.y > 0.999999f ? 1 : 0;
+        down += c.normal.y < -0.999999f ? 1 : 0;
+    }
+    CHECK(up == 32);
+    CHECK(down == 32);
+    shared::LightCacheNeighbours found;
+    CHECK(nearestLightCaches(set, glm::vec3(1.0f, 0.0f, -0.5f), glm::vec3(0, -1, 0), found) > 0); // seen from below
+
+    // 2 m^2 cut into (d/4)^2 pieces: d = 1e-3 m would be 3.2e7 pieces, over the 1e7 limit.
+    CHECK_THROWS_AS(distribute(scene, paramsWith(1e-3f)), Error);
+}
+
 TEST_CASE("light caches: a closed box gets the plane count per face and no cache across an edge",
           "[lightskin][caches]")
 {
