@@ -260,7 +260,18 @@ TEST_CASE("light caches: areas sum to the surface area, snapped caches lie on th
     SECTION("cornell, automatic d_eps, per instance")
     {
         const Scene scene = makeBuiltinScene("cornell");
-        const LightCacheSet set = distribute(scene, LightCacheParams{});
+        std::vector<std::pair<std::string, int>> calls;
+        const LightCacheSet set = distributeLightCaches(
+            scene, LightCacheParams{}, [&](const std::string& task, int done, int total) {
+                CHECK(total == static_cast<int>(scene.instances.size()));
+                calls.emplace_back(task, done);
+            },
+            "");
+        REQUIRE(calls.size() == scene.instances.size() + 1); // 0, then one per instance
+        for (std::size_t i = 0; i < calls.size(); ++i) {
+            CHECK(calls[i].first == "lightskin caches");
+            CHECK(calls[i].second == static_cast<int>(i));
+        }
         REQUIRE(set.instanceStart.size() == scene.instances.size() + 1);
         for (std::size_t i = 0; i < scene.instances.size(); ++i) {
             double area = 0.0;
@@ -322,7 +333,7 @@ TEST_CASE("light caches: areas sum to the surface area, snapped caches lie on th
 TEST_CASE("light caches: every surface point has a facing cache within d_eps", "[lightskin][caches]")
 {
     // The paper's meaning of d_eps: the largest distance between a surface point and its cache.
-    for (const char* name : {"cornell", "maze"}) {
+    for (const char* name : {"cornell", "maze", "street"}) {
         const Scene scene = makeBuiltinScene(name);
         const LightCacheSet set = distribute(scene, LightCacheParams{});
         const SurfacePoints points = sampleSurfacePoints(scene, 20000, 7);
