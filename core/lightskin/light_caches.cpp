@@ -172,8 +172,10 @@ glm::dvec3 binCentre(int bin)
     return glm::normalize(v);
 }
 
-Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std::uint32_t>& indices,
-                    const VoxelGrid& grid)
+// `world`: vertex positions; `side`: per vertex a direction on the surface's outer side (the world
+// shading normal), which decides the side of each triangle's geometric normal.
+Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<glm::dvec3>& side,
+                    const std::vector<std::uint32_t>& indices, const VoxelGrid& grid)
 {
     const double fine = 0.5 * grid.edge;
     const std::size_t triangles = indices.size() / 3;
@@ -192,7 +194,11 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std:
             const glm::dvec3 cross = glm::cross(b - a, c - a);
             const double length = glm::length(cross);
             if (!(length > 0.0) || !std::isfinite(length)) continue; // degenerate: no area to represent
-            const glm::dvec3 normal = cross / length;
+            // The geometric normal on the side of the vertex normals, as the renderer keeps it
+            // (core/scene/surface.cpp): a mirroring transform reverses the winding, not the side.
+            const glm::dvec3 shading = side[indices[3 * t]] + side[indices[3 * t + 1]] + side[indices[3 * t + 2]];
+            const glm::dvec3 winding = cross / length; // the pieces' vertex order: their areas are > 0 along it
+            const glm::dvec3 normal = glm::dot(cross, shading) < 0.0 ? -winding : winding;
             stage.assign(1, Polygon{(a - grid.origin) / fine, (b - grid.origin) / fine, (c - grid.origin) / fine});
             for (int axis = 0; axis < 3; ++axis) {
                 next.clear();
@@ -207,7 +213,7 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std:
                 for (const glm::dvec3& u : p) corners.push_back(grid.origin + u * fine);
                 for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
                     const double part =
-                        0.5 * glm::dot(glm::cross(corners[i] - corners[0], corners[i + 1] - corners[0]), normal);
+                        0.5 * glm::dot(glm::cross(corners[i] - corners[0], corners[i + 1] - corners[0]), winding);
                     area += part;
                     centroid += part * (corners[0] + corners[i] + corners[i + 1]) / 3.0;
                 }
@@ -505,12 +511,14 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
     const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
     if (mesh.indices.empty()) return {};
     const glm::dmat4 worldFromObject(instance.worldFromObject);
-    std::vector<glm::dvec3> world(mesh.vertices.size());
+    const glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(worldFromObject)));
+    std::vector<glm::dvec3> world(mesh.vertices.size()), side(mesh.vertices.size());
     VoxelGrid grid;
     grid.edge = 0.5 * distance;
     glm::dvec3 lower(std::numeric_limits<double>::infinity()), upper(-std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < world.size(); ++i) {
         world[i] = glm::dvec3(worldFromObject * glm::dvec4(glm::dvec3(mesh.vertices[i].position), 1.0));
+        side[i] = normalFromObject * glm::dvec3(mesh.vertices[i].normal);
         lower = glm::min(lower, world[i]);
         upper = glm::max(upper, world[i]);
     }
@@ -521,7 +529,7 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
                                                  " m is too small for instance of mesh '" + mesh.name + "'");
 
     const double cosTheta = std::cos(glm::radians(static_cast<double>(params.angleDegrees)));
-    const Pieces all = clipInstance(world, mesh.indices, grid);
+    const Pieces all = clipInstance(world, side, mesh.indices, grid);
     if (all.pieces.empty()) return {};
 
     // Steps 2-3: pieces grouped by voxel (ascending key, then piece order), voxels in parallel, results
@@ -570,7 +578,10 @@ std::string instanceKey(const Scene& scene, const Instance& instance, float dist
     h.text("lightskin caches");
     h.value(kFileVersion);
     h.value(mesh.vertices.size());
-    for (const Vertex& v : mesh.vertices) h.value(v.position); // normals and texcoords do not move caches
+    for (const Vertex& v : mesh.vertices) { // positions place the caches, normals choose their side
+        h.value(v.position);
+        h.value(v.normal);
+    }
     h.value(mesh.indices.size());
     h.bytes(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
     h.value(instance.worldFromObject);

@@ -10,8 +10,8 @@
 //
 // Overview (paper steps 1-5, per instance in world space; light_caches.cpp explains each choice):
 //  1. Voxelise at edge d_eps / 2: clip every triangle against a grid of edge d_eps / 4 (exact pieces,
-//     each with an area, centroid and geometric normal); a piece belongs to the d_eps / 2 voxel
-//     holding its centroid.
+//     each with an area, centroid and geometric normal, on the side of the vertex normals); a piece
+//     belongs to the d_eps / 2 voxel holding its centroid.
 //  2. Bin the pieces' normals per voxel: cube-map faces x 8 x 8 direction bins.
 //  3. Per voxel, while pieces remain: take the bin with the largest area; the cache is the
 //     area-weighted mean position and normal of the remaining pieces within theta_eps of that bin's
@@ -26,7 +26,7 @@
 //
 // Per model: the paper distributes per model in model space; our scenes are instances of meshes, so
 // caches are distributed per instance in world space, and the disk cache is keyed by the hash of the
-// mesh's positions and indices, the instance transform and the resolved parameters.
+// mesh's positions, normals and indices, the instance transform and the resolved parameters.
 //
 // References: Lensing & Broll 2013 (LightSkin), Lensing 2014 (thesis); the BRSM + LightSkin paper in
 // ../shared/papers/004_e7a2a609166487da.txt; ../shared/MATH.md section 9.

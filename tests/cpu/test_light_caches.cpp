@@ -180,7 +180,7 @@ TEST_CASE("light caches: a plane gets one cache per d_eps/2 voxel, its normal, i
         }
 }
 
-TEST_CASE("light caches: a double-sided plane gets each cache on both sides, a tiny d_eps is refused",
+TEST_CASE("light caches: a double-sided plane gets each cache on both sides, a mirrored one its own side, a tiny d_eps is refused",
           "[lightskin][caches]")
 {
     Mesh mesh;
@@ -200,6 +200,13 @@ TEST_CASE("light caches: a double-sided plane gets each cache on both sides, a t
     CHECK(down == 32);
     shared::LightCacheNeighbours found;
     CHECK(nearestLightCaches(set, glm::vec3(1.0f, 0.0f, -0.5f), glm::vec3(0, -1, 0), found) > 0); // seen from below
+
+    // A mirroring instance transform reverses the winding, not the side the vertex normals give.
+    scene.materials[0].doubleSided = false;
+    scene.instances[0].worldFromObject = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+    int mirroredUp = 0;
+    for (const LightCache& c : distribute(scene, paramsWith(0.5f)).caches) mirroredUp += c.normal.y > 0.999999f ? 1 : 0;
+    CHECK(mirroredUp == 32);
 
     // 2 m^2 cut into (d/4)^2 pieces: d = 1e-3 m would be 3.2e7 pieces, over the 1e7 limit.
     CHECK_THROWS_AS(distribute(scene, paramsWith(1e-3f)), Error);
