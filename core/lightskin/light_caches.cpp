@@ -37,12 +37,12 @@ void LightCacheParams::visitParams(ParamVisitor& v)
 
 namespace {
 
-constexpr int kBinsPerFaceEdge = 8;            // step 2: 6 x 8 x 8 direction bins
-constexpr double kSplitEpsilon = 1e-4;         // [fine voxel edges]: see splitAlong
-constexpr std::uint32_t kFileVersion = 1;      // bump when the distribution or the file layout changes
+constexpr int kBinsPerFaceEdge = 8;       // step 2: 6 x 8 x 8 direction bins
+constexpr double kSplitEpsilon = 1e-4;    // [fine voxel edges]: see splitAlong
+constexpr std::uint32_t kFileVersion = 1; // bump when the distribution or the file layout changes
 constexpr char kFileMagic[8] = {'V', 'P', 'L', 'G', 'L', 'S', 'C', 'A'};
-constexpr int kAutomaticCacheTarget = 2048;    // caches on a flat scene under the automatic d_eps
-constexpr double kMaxPieces = 1e7;             // step 1 pieces per scene: about 2 GB
+constexpr int kAutomaticCacheTarget = 2048; // caches on a flat scene under the automatic d_eps
+constexpr double kMaxPieces = 1e7;          // step 1 pieces per scene: about 2 GB
 
 // The geometry of one cache before the material is attached (what the disk cache stores).
 struct CacheGeometry {
@@ -130,8 +130,8 @@ struct Pieces {
 // Voronoi partition for the area, at four times the pieces of a plain d_eps / 2 clip.
 struct VoxelGrid {
     glm::dvec3 origin{0.0};
-    double edge = 1.0;        // h [m]
-    glm::i64vec3 dims{1};     // voxels per axis
+    double edge = 1.0;    // h [m]
+    glm::i64vec3 dims{1}; // voxels per axis
 
     std::uint64_t key(const glm::i64vec3& v) const
     {
@@ -202,7 +202,8 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<glm:
             stage.assign(1, Polygon{(a - grid.origin) / fine, (b - grid.origin) / fine, (c - grid.origin) / fine});
             for (int axis = 0; axis < 3; ++axis) {
                 next.clear();
-                for (const Polygon& p : stage) splitAlong(p, axis, next);
+                for (const Polygon& p : stage)
+                    splitAlong(p, axis, next);
                 stage.swap(next);
             }
             for (const Polygon& p : stage) {
@@ -210,7 +211,8 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<glm:
                 double area = 0.0;
                 glm::dvec3 centroid(0.0);
                 std::vector<glm::dvec3> corners;
-                for (const glm::dvec3& u : p) corners.push_back(grid.origin + u * fine);
+                for (const glm::dvec3& u : p)
+                    corners.push_back(grid.origin + u * fine);
                 for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
                     const double part =
                         0.5 * glm::dot(glm::cross(corners[i] - corners[0], corners[i + 1] - corners[0]), winding);
@@ -249,8 +251,8 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<glm:
 struct Cluster {
     glm::dvec3 position{0.0};
     glm::dvec3 normal{0.0, 1.0, 0.0};
-    double weight = 0.0;                // area of the pieces averaged [m^2]
-    std::vector<std::uint32_t> pieces;  // indices into Pieces::pieces, ascending
+    double weight = 0.0;               // area of the pieces averaged [m^2]
+    std::vector<std::uint32_t> pieces; // indices into Pieces::pieces, ascending
 };
 
 // Area-weighted mean position and normal of `members`.
@@ -276,21 +278,22 @@ Cluster averagePieces(const Pieces& all, std::vector<std::uint32_t> members)
 // theta_eps of it, and always the bin's own pieces: with theta_eps narrower than a bin (about 11
 // degrees across), the centre might be further than theta_eps from every piece in the bin, and the
 // loop would never end.
-void clusterVoxel(const Pieces& all, std::vector<std::uint32_t> remaining, double cosTheta,
-                  std::vector<Cluster>& out)
+void clusterVoxel(const Pieces& all, std::vector<std::uint32_t> remaining, double cosTheta, std::vector<Cluster>& out)
 {
     std::vector<std::pair<int, double>> binAreas;
     while (!remaining.empty()) {
         binAreas.clear();
-        for (std::uint32_t m : remaining) binAreas.emplace_back(all.pieces[m].bin, all.pieces[m].area);
+        for (std::uint32_t m : remaining)
+            binAreas.emplace_back(all.pieces[m].bin, all.pieces[m].area);
         std::stable_sort(binAreas.begin(), binAreas.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
         int bestBin = -1;
         double bestArea = -1.0;
         for (std::size_t i = 0; i < binAreas.size();) {
             double sum = 0.0;
             std::size_t j = i;
-            for (; j < binAreas.size() && binAreas[j].first == binAreas[i].first; ++j) sum += binAreas[j].second;
+            for (; j < binAreas.size() && binAreas[j].first == binAreas[i].first; ++j)
+                sum += binAreas[j].second;
             if (sum > bestArea) {
                 bestArea = sum;
                 bestBin = binAreas[i].first;
@@ -379,13 +382,13 @@ public:
         return glm::clamp(glm::i64vec3(u), glm::i64vec3(-1), mGrid.dims);
     }
     // Calls f(cluster index) for every cluster in `cell` (cells outside [-1, dims] hold none).
-    template <class F>
-    void forCell(const glm::i64vec3& cell, F&& f) const
+    template <class F> void forCell(const glm::i64vec3& cell, F&& f) const
     {
         if (glm::any(glm::lessThan(cell, glm::i64vec3(-1))) || glm::any(glm::greaterThan(cell, mGrid.dims))) return;
         const std::uint64_t k = key(cell);
         auto it = std::lower_bound(mEntries.begin(), mEntries.end(), std::make_pair(k, std::uint32_t(0)));
-        for (; it != mEntries.end() && it->first == k; ++it) f(it->second);
+        for (; it != mEntries.end() && it->first == k; ++it)
+            f(it->second);
     }
     std::int64_t maxRing() const { return std::max({mGrid.dims.x, mGrid.dims.y, mGrid.dims.z}) + 2; }
 
@@ -495,8 +498,10 @@ std::vector<std::uint32_t> assignPieces(const Pieces& all, const VoxelGrid& grid
                 const double covered = static_cast<double>(r) * grid.edge;
                 if (bestDistance2[0] < covered * covered) tier = 0;
             }
-            if (tier < 0) tier = bestDistance2[0] < std::numeric_limits<double>::infinity() ? 0
-                                 : bestDistance2[1] < std::numeric_limits<double>::infinity() ? 1 : 2;
+            if (tier < 0)
+                tier = bestDistance2[0] < std::numeric_limits<double>::infinity()   ? 0
+                       : bestDistance2[1] < std::numeric_limits<double>::infinity() ? 1
+                                                                                    : 2;
             owner[m] = best[static_cast<std::size_t>(tier)];
         }
     });
@@ -535,7 +540,8 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
     // Steps 2-3: pieces grouped by voxel (ascending key, then piece order), voxels in parallel, results
     // concatenated in voxel order.
     std::vector<std::uint32_t> order(all.pieces.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < order.size(); ++i)
+        order[i] = static_cast<std::uint32_t>(i);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return all.pieces[a].voxel < all.pieces[b].voxel; });
     std::vector<std::size_t> groupStart;
@@ -548,17 +554,20 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
                                            order.begin() + static_cast<std::ptrdiff_t>(groupStart[g + 1]));
         clusterVoxel(all, std::move(members), cosTheta, perVoxel[g]);
         if (params.snap)
-            for (Cluster& c : perVoxel[g]) snapCluster(all, c);
+            for (Cluster& c : perVoxel[g])
+                snapCluster(all, c);
     });
     std::vector<Cluster> clusters;
     for (std::vector<Cluster>& v : perVoxel)
-        for (Cluster& c : v) clusters.push_back(std::move(c));
+        for (Cluster& c : v)
+            clusters.push_back(std::move(c));
 
     if (params.join) joinClusters(all, grid, cosTheta, params.snap, clusters);
 
     const std::vector<std::uint32_t> owner = assignPieces(all, grid, cosTheta, clusters);
     std::vector<double> area(clusters.size(), 0.0);
-    for (std::size_t m = 0; m < owner.size(); ++m) area[owner[m]] += all.pieces[m].area; // in piece order
+    for (std::size_t m = 0; m < owner.size(); ++m)
+        area[owner[m]] += all.pieces[m].area; // in piece order
 
     std::vector<CacheGeometry> caches;
     for (std::size_t i = 0; i < clusters.size(); ++i) {
@@ -679,7 +688,9 @@ double sceneSurfaceArea(const Scene& scene)
         for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
             glm::dvec3 p[3];
             for (int k = 0; k < 3; ++k)
-                p[k] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
+                p[k] = glm::dvec3(
+                    m *
+                    glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
             area += triangleAreaWorld(p[0], p[1], p[2]);
         }
     }
@@ -736,8 +747,10 @@ void buildLightCacheGrid(LightCacheSet& set, float cellSize)
                                   static_cast<std::size_t>(grid.dims.z);
     // Counting sort: caches visited in index order, so each cell's list is sorted by index.
     grid.cellStart.assign(cellCount + 1, 0);
-    for (const LightCache& c : set.caches) ++grid.cellStart[cellOf(c.position) + 1];
-    for (std::size_t i = 0; i < cellCount; ++i) grid.cellStart[i + 1] += grid.cellStart[i];
+    for (const LightCache& c : set.caches)
+        ++grid.cellStart[cellOf(c.position) + 1];
+    for (std::size_t i = 0; i < cellCount; ++i)
+        grid.cellStart[i + 1] += grid.cellStart[i];
     grid.cacheIndices.assign(set.caches.size(), 0);
     std::vector<std::uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
     for (std::size_t i = 0; i < set.caches.size(); ++i)
@@ -770,7 +783,8 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
         std::filesystem::path file;
         bool loaded = false;
         if (!cacheDir.empty()) {
-            file = std::filesystem::path(cacheDir) / "lightskin" / (instanceKey(scene, instance, set.distance, params) + ".bin");
+            file = std::filesystem::path(cacheDir) / "lightskin" /
+                   (instanceKey(scene, instance, set.distance, params) + ".bin");
             loaded = readInstanceFile(file, geometry);
         }
         if (loaded) {
@@ -780,7 +794,8 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
             ++set.instancesComputed;
             if (!cacheDir.empty()) writeInstanceFile(file, geometry);
         }
-        const std::size_t material = static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(instance.mesh)].material);
+        const std::size_t material =
+            static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(instance.mesh)].material);
         const glm::vec3 base = materials.baseColor[material];
         const float metallic = materials.metallic[material];
         const float specular = scene.materials[material].specular;

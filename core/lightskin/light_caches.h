@@ -60,19 +60,26 @@ struct LightCacheParams {
     void visitParams(ParamVisitor& visitor);
 };
 
-struct LightCache {          // world space; two vec4 rows each, std430-friendly (64 bytes)
-    glm::vec3 position{0.0f}; float area = 0.0f;      // area: the surface it represents (Voronoi) [m^2]
-    glm::vec3 normal{0.0f, 1.0f, 0.0f}; float roughness = 1.0f; // unit normal; perceptual roughness
-    glm::vec3 diffuse{0.0f}; float metallic = 0.0f;   // (1 - metallic) baseColor (see below)
-    glm::vec3 specular{0.0f}; float pad = 0.0f;       // F0 = mix(0.04 specular, baseColor, metallic)
+// clang-format off: one line per vec4 row, as the GPU reads it
+struct LightCache { // world space; four vec4 rows, std430 as it is (64 bytes)
+    glm::vec3 position{0.0f};
+    float area = 0.0f; // area: the surface it represents (Voronoi) [m^2]
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};
+    float roughness = 1.0f; // unit normal; perceptual roughness
+    glm::vec3 diffuse{0.0f};
+    float metallic = 0.0f; // (1 - metallic) baseColor (see below)
+    glm::vec3 specular{0.0f};
+    float pad = 0.0f; // F0 = mix(0.04 specular, baseColor, metallic)
 };
+// clang-format on
 static_assert(sizeof(LightCache) == 64, "LightCache is four vec4 rows");
 // Material columns: an instance has one mesh and a mesh one material, so every cache of an instance
 // has that material, untextured: the material factors times the means of their textures
 // (computeUntexturedMaterials, the same table SMCIR's untextured VPLs use).
 
-struct LightCacheGrid {      // uniform grid for the per-pixel lookup of the nearest caches
-    glm::vec3 origin{0.0f}; float cellSize = 1.0f; // cellSize = d_eps, grown when > kMaxLightCacheGridCells
+struct LightCacheGrid { // uniform grid for the per-pixel lookup of the nearest caches
+    glm::vec3 origin{0.0f};
+    float cellSize = 1.0f; // d_eps, grown when the grid would exceed kMaxLightCacheGridCells
     glm::ivec3 dims{0};
     std::vector<std::uint32_t> cellStart;    // dims.x*dims.y*dims.z + 1 offsets into cacheIndices
     std::vector<std::uint32_t> cacheIndices; // caches of each cell, sorted by index
@@ -82,10 +89,10 @@ constexpr std::int64_t kMaxLightCacheGridCells = std::int64_t(1) << 22; // 4M ce
 struct LightCacheSet {
     std::vector<LightCache> caches;
     LightCacheGrid grid;
-    float distance = 0;                        // the d_eps used [m] (resolved when params.distance = 0)
-    std::vector<std::uint32_t> instanceStart;  // caches of instance i: [instanceStart[i], instanceStart[i+1])
-    int instancesLoaded = 0;                   // instances read from the disk cache
-    int instancesComputed = 0;                 // instances distributed (and written when a cacheDir is given)
+    float distance = 0;                       // the d_eps used [m] (resolved when params.distance = 0)
+    std::vector<std::uint32_t> instanceStart; // caches of instance i: [instanceStart[i], instanceStart[i+1])
+    int instancesLoaded = 0;                  // instances read from the disk cache
+    int instancesComputed = 0;                // instances distributed (and written when a cacheDir is given)
 };
 
 // The d_eps that `params` ask for on `scene`: params.distance, or the automatic rule above when it is 0.
@@ -97,8 +104,8 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
 // `cacheDir` ("" = no disk cache): cacheDir/lightskin/<hex>.bin per instance. A missing, corrupt or
 // truncated file is recomputed (a warning on stderr for the last two); a file that cannot be written
 // is a warning, not an error. Deterministic: the same input gives the same bits at any TBB thread count.
-LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params,
-                                    const ProgressSink& progress, const std::string& cacheDir);
+LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params, const ProgressSink& progress,
+                                    const std::string& cacheDir);
 
 // Builds `set.grid` over set.caches with cell size `cellSize` (grown until the cell count is at most
 // kMaxLightCacheGridCells). distributeLightCaches calls it with d_eps.

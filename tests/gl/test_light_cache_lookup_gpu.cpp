@@ -30,7 +30,8 @@ std::uint32_t bitsOf(float f)
 
 void pushVec3(std::vector<std::uint32_t>& words, const glm::vec3& v)
 {
-    for (int i = 0; i < 3; ++i) words.push_back(bitsOf(v[i]));
+    for (int i = 0; i < 3; ++i)
+        words.push_back(bitsOf(v[i]));
     words.push_back(0);
 }
 
@@ -45,9 +46,11 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
     const int k = shared::kMaxLightCacheNeighbours;
 
     std::vector<std::uint32_t> words(12, 0);
-    for (int i = 0; i < 3; ++i) words[static_cast<std::size_t>(i)] = bitsOf(set.grid.origin[i]);
+    for (int i = 0; i < 3; ++i)
+        words[static_cast<std::size_t>(i)] = bitsOf(set.grid.origin[i]);
     words[3] = bitsOf(set.grid.cellSize);
-    for (int i = 0; i < 3; ++i) words[static_cast<std::size_t>(4 + i)] = static_cast<std::uint32_t>(set.grid.dims[i]);
+    for (int i = 0; i < 3; ++i)
+        words[static_cast<std::size_t>(4 + i)] = static_cast<std::uint32_t>(set.grid.dims[i]);
     words[7] = static_cast<std::uint32_t>(k);
     words[8] = static_cast<std::uint32_t>(words.size());
     for (const LightCache& c : set.caches) {
@@ -64,16 +67,16 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
         pushVec3(words, points.normals[i]);
     }
     const int count = static_cast<int>(points.positions.size());
-    const std::vector<glm::vec4> results = test::runComputeProbe(
-        "light cache lookup probe", "light_cache_lookup_probe.comp", words.data(), words.size() * sizeof(std::uint32_t),
-        count, kResultsPerCase);
+    const std::vector<glm::vec4> results =
+        test::runComputeProbe("light cache lookup probe", "light_cache_lookup_probe.comp", words.data(),
+                              words.size() * sizeof(std::uint32_t), count, kResultsPerCase);
 
     int setMismatches = 0, found = 0;
     double worstDistance = 0.0;
     shared::LightCacheNeighbours expected;
     for (int q = 0; q < count; ++q) {
-        nearestLightCaches(set, points.positions[static_cast<std::size_t>(q)], points.normals[static_cast<std::size_t>(q)],
-                           expected, k);
+        nearestLightCaches(set, points.positions[static_cast<std::size_t>(q)],
+                           points.normals[static_cast<std::size_t>(q)], expected, k);
         const glm::vec4* got = &results[static_cast<std::size_t>(q) * kResultsPerCase];
         bool same = static_cast<int>(got[0].x) == expected.count;
         for (int s = 0; same && s < expected.count; ++s) {
@@ -84,9 +87,9 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
         setMismatches += same ? 0 : 1;
         found += expected.count;
     }
-    INFO("mean caches per point " << static_cast<double>(found) / count << ", worst |d^2 GPU - CPU| "
-                                  << worstDistance << " m^2, d_eps " << set.distance << " m");
-    CHECK(found > 8 * count);     // the lookups found caches (about 12.6 per point within d_eps)
+    INFO("mean caches per point " << static_cast<double>(found) / count << ", worst |d^2 GPU - CPU| " << worstDistance
+                                  << " m^2, d_eps " << set.distance << " m");
+    CHECK(found > 8 * count); // the lookups found caches (about 12.6 per point within d_eps)
     // The same float operations in the same order, except that llvmpipe fuses the dot product's
     // multiply-adds: measured worst 2.3e-10 m^2, one ulp of a d^2 near d_eps^2 = 3.7e-3 m^2 (ulp 2^-32);
     // the bound is three such ulps. Sets: 0 mismatches measured; an ulp can only reorder a near-tie
