@@ -72,6 +72,7 @@ struct CompareOptions {
     int trackedReferenceSpp = 65536;          // --reference-spp
     std::string outDir;
     std::string cache;
+    std::string against;                      // --against: a --techniques entry ("" = none)
 };
 
 std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args)
@@ -102,6 +103,9 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                  "samples per tracked pixel of the tracked-pixel reference (the temporal metrics; rendered twice, "
                  "two seeds, to measure its own |E'|)",
                  "65536");
+    parser.value("against", "T",
+                 "also compare every technique's image with that of T, one of --techniques: the mean and 99.9th "
+                 "percentile of |A - B| after the fixed-exposure tone map (LightSkin+BRSM Fig. 3 and 6)");
     parser.value("out", "DIR", "output directory (created)", "out/compare");
     parser.value("cache", "DIR", "reference cache directory ($VPLGI_CACHE_DIR or out/reference-cache)");
     if (!parser.parse(args)) return std::nullopt;
@@ -127,6 +131,11 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.reference.visitParams(referenceSetter);
     o.referenceKeys = referenceSetter.usedKeys();
     o.cache = parser.has("cache") ? parser.get("cache") : defaultReferenceCache();
+    if (parser.has("against")) {
+        o.against = parser.get("against");
+        require(std::count(o.techniques.begin(), o.techniques.end(), o.against) == 1,
+                "--against \"" + o.against + "\" must be one of --techniques");
+    }
     return o;
 }
 
@@ -137,6 +146,8 @@ struct TechniqueRun {
     std::vector<ImageErrors> frameErrors;
     std::vector<std::vector<double>> tracked; // [frame][pixel] luminance
     std::vector<double> frameMilliseconds;
+    ImageRGBA32F image;                      // the compared part of the last frame
+    std::vector<ImageErrors> againstErrors;  // per frame, against the --against run's image
 };
 
 struct FrameLoopResult {
@@ -236,7 +247,8 @@ void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const Imag
     renderer.renderFrame(run.session->camera(), o.size.width, o.size.height, o.animation.timeOf(frame));
     // GPU timestamp queries publish frames late: take whichever frames completed (the rest after the loop).
     for (const gl::FrameTimes& f : renderer.timer().takeCompletedFrames()) run.frameMilliseconds.push_back(f.total());
-    ImageRGBA32F image = comparablePart(renderer, o.reference.mode);
+    run.image = comparablePart(renderer, o.reference.mode);
+    const ImageRGBA32F& image = run.image;
     const bool haveReference = !reference.pixels.empty();
     if (haveReference) run.frameErrors.push_back(compareImages(image, reference, exposure));
     std::vector<double> values;
@@ -298,6 +310,16 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
                        toneMapImage(reference, exposure));
         }
         for (TechniqueRun& run : runs) renderTechniqueFrame(o, run, reference, tracked, frame, exposure);
+        if (!o.against.empty()) {
+            const TechniqueRun& base = *std::find_if(runs.begin(), runs.end(),
+                                                     [&](const TechniqueRun& r) { return r.name == o.against; });
+            for (TechniqueRun& run : runs) {
+                run.againstErrors.push_back(compareImages(run.image, base.image, exposure));
+                if (&run != &base && compareKeepsImages(frame, o.animation.frames))
+                    writeImage(o.outDir + "/" + compareImageName(run.name, frame, "-difference.png"),
+                               errorHeatMap(run.image, base.image, exposure, 0.05));
+            }
+        }
         std::fprintf(stderr, "frame %d/%d done\n", frame + 1, o.animation.frames);
     }
     for (TechniqueRun& run : runs) {
@@ -321,6 +343,11 @@ CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std:
         result.meanErrors.rmse += e.rmse / frames;
         result.meanErrors.relativeMSE += e.relativeMSE / frames;
         result.meanErrors.meanRelativeLuminance += e.meanRelativeLuminance / frames;
+    }
+    const double againstFrames = static_cast<double>(std::max<std::size_t>(1, run.againstErrors.size()));
+    for (const ImageErrors& e : run.againstErrors) {
+        result.againstErrors.meanAbsToneMapped += e.meanAbsToneMapped / againstFrames;
+        result.againstErrors.p999AbsToneMapped += e.p999AbsToneMapped / againstFrames;
     }
     result.temporal = temporalErrors(run.tracked, referenceTracked, exposure);
     std::vector<double> ms = run.frameMilliseconds;
@@ -361,6 +388,7 @@ CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std:
     report.trackedReferenceSpp = o.trackedReferenceSpp;
     report.trackedReferenceSeconds = loop.trackedReferenceSeconds;
     report.referenceSelf = temporalErrors(loop.referenceCheckTracked, loop.referenceTracked, exposure);
+    report.against = o.against;
     for (const TechniqueRun& run : runs)
         report.techniques.push_back(summarize(run, loop.referenceTracked, exposure, run.settings));
     return report;

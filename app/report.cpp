@@ -194,6 +194,14 @@ std::string compareTemporalSummary(const CompareReport& report)
         text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": |E| "
              << formatNumber(t.temporal.meanAbsError) << "  |E'| " << formatNumber(t.temporal.meanAbsDerivative) << "\n";
     text << "  " << noiseCheckText(report) << "\n";
+    if (!report.against.empty()) {
+        text << "difference from " << report.against << " (mean |A - B| after the tone map, 99.9th percentile):\n";
+        for (const CompareTechniqueResult& t : report.techniques)
+            if (t.name != report.against)
+                text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": "
+                     << formatNumber(t.againstErrors.meanAbsToneMapped) << "  "
+                     << formatNumber(t.againstErrors.p999AbsToneMapped) << "\n";
+    }
     return text.str();
 }
 
@@ -201,13 +209,18 @@ std::string compareCsv(const CompareReport& report)
 {
     std::ostringstream csv;
     csv << "technique,frames,mean_abs_tonemapped,p999_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
-           "temporal_abs_e_prime,median_frame_ms,settings\n";
+           "temporal_abs_e_prime,median_frame_ms,against,against_mean_abs_tonemapped,against_p999_abs_tonemapped,settings\n";
     for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
         csv << t.name << "," << report.frames << "," << imageMetric(report, mean.meanAbsToneMapped, "") << ","
             << imageMetric(report, mean.p999AbsToneMapped, "") << "," << imageMetric(report, mean.rmse, "") << "," << imageMetric(report, mean.relativeMSE, "") << ","
             << imageMetric(report, mean.meanRelativeLuminance, "") << "," << t.temporal.meanAbsError << ","
-            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << t.settings << "\n";
+            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << report.against << ",";
+        if (!report.against.empty())
+            csv << t.againstErrors.meanAbsToneMapped << "," << t.againstErrors.p999AbsToneMapped;
+        else
+            csv << ",";
+        csv << "," << t.settings << "\n";
     }
     return csv.str();
 }
@@ -241,8 +254,12 @@ std::string compareJson(const CompareReport& report)
              << ", \"meanLuminanceBias\": " << imageMetric(report, mean.meanRelativeLuminance, "null")
              << ", \"temporalAbsE\": " << t.temporal.meanAbsError
              << ", \"temporalAbsEPrime\": " << t.temporal.meanAbsDerivative
-             << ", \"medianFrameMs\": " << t.medianFrameMs
-             << "}" << (i + 1 < report.techniques.size() ? "," : "") << "\n";
+             << ", \"medianFrameMs\": " << t.medianFrameMs;
+        if (!report.against.empty())
+            json << ", \"against\": {\"technique\": \"" << report.against
+                 << "\", \"meanAbsToneMapped\": " << t.againstErrors.meanAbsToneMapped
+                 << ", \"p999AbsToneMapped\": " << t.againstErrors.p999AbsToneMapped << "}";
+        json << "}" << (i + 1 < report.techniques.size() ? "," : "") << "\n";
     }
     json << "  ]\n}\n";
     return json.str();
@@ -285,8 +302,11 @@ std::string metricsTableRows(const CompareReport& report)
               << cell(mean.rmse) << "</td><td>"
               << cell(mean.relativeMSE) << "</td><td>" << cell(100.0 * mean.meanRelativeLuminance, 3, "%")
               << "</td><td>" << formatNumber(t.temporal.meanAbsError) << "</td><td>"
-              << formatNumber(t.temporal.meanAbsDerivative) << "</td><td>" << formatNumber(t.medianFrameMs, 4)
-              << "</td></tr>\n";
+              << formatNumber(t.temporal.meanAbsDerivative) << "</td><td>" << formatNumber(t.medianFrameMs, 4);
+        if (!report.against.empty())
+            table << "</td><td>" << formatNumber(t.againstErrors.meanAbsToneMapped) << "</td><td>"
+                  << formatNumber(t.againstErrors.p999AbsToneMapped);
+        table << "</td></tr>\n";
     }
     return table.str();
 }
@@ -301,6 +321,14 @@ std::string frameFigures(const CompareReport& report, int frame)
     for (const CompareTechniqueResult& t : report.techniques)
         html << "<figure><img src=\"" << compareImageName(t.name, frame, ".png") << "\"><figcaption>"
              << htmlEscape(t.name) << "</figcaption></figure>\n";
+    if (!report.against.empty()) {
+        html << "<br>\n";
+        for (const CompareTechniqueResult& t : report.techniques)
+            if (t.name != report.against)
+                html << "<figure><img src=\"" << compareImageName(t.name, frame, "-difference.png")
+                     << "\"><figcaption>" << htmlEscape(t.name) << " against " << htmlEscape(report.against)
+                     << ": |A - B| after the tone map (black 0, white &ge; 0.05)</figcaption></figure>\n";
+    }
     if (!report.imageMetrics) return html.str();
     html << "<br>\n";
     for (const CompareTechniqueResult& t : report.techniques)
@@ -337,7 +365,10 @@ std::string compareHtml(const CompareReport& report)
     html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>settings (--set)</th><th>mean |E| (tone-mapped)</th>"
          << "<th>99.9th pct |E|</th><th>RMSE</th><th>rel. MSE</th>"
          << "<th>mean luminance bias</th><th>avg |E| tracked</th><th>avg |E'| tracked (SMCIR eq. 10)</th>"
-         << "<th>median frame [ms]</th></tr>\n"
+         << "<th>median frame [ms]</th>"
+         << (report.against.empty() ? std::string()
+                                    : "<th>mean |A - " + htmlEscape(report.against) + "| (tone-mapped)</th><th>99.9th pct</th>")
+         << "</tr>\n"
          << metricsTableRows(report) << "</table>\n<p>All numbers: <a href=\"metrics.csv\">metrics.csv</a>, "
          << "<a href=\"metrics.json\">metrics.json</a>. Frame times are on this machine's OpenGL implementation.</p>\n";
     html << "<h2>Frame 0</h2>\n" << frameFigures(report, 0);

@@ -38,6 +38,7 @@ struct CompareTechniqueResult {
     double medianFrameMs = 0.0;
     std::vector<std::vector<double>> tracked; // [frame][pixel] luminance
     std::string settings;                     // the --set overrides its session used, "key=value ..."
+    ImageErrors againstErrors;                // against CompareReport::against's image, averaged over frames
 };
 
 // Everything the compare report shows besides the images (written while rendering, named by
@@ -60,6 +61,7 @@ struct CompareReport {
     std::vector<std::vector<double>> referenceTracked; // [frame][pixel] luminance (first seed)
     TemporalErrors referenceSelf;           // the second seed's run against the first: its own |E|, |E'|
     std::vector<CompareTechniqueResult> techniques;
+    std::string against; // --against: the technique every image is also compared with ("" = none)
 };
 
 // Whether the tracked-pixel reference is quiet enough: its own |E'| <= 0.2x the smallest |E'| of

@@ -8,7 +8,7 @@ namespace vplgi {
 
 void addSceneOptions(OptionParser& parser, const std::string& setHelp)
 {
-    parser.value("scene", "S", "built-in scene (caustics, cornell, furnace, glossy, maze, street), scene file (.json) or .gltf/.glb");
+    parser.value("scene", "S", "built-in scene (canyon, caustics, cornell, furnace, glossy, maze, street), scene file (.json) or .gltf/.glb");
     parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
     parser.value("set", "KEY=VALUE", setHelp, "", true);
 }

@@ -787,10 +787,11 @@ struct FacadeFrame {
 
 // One building: the block, a glass shop front, storeys of windows with sills between ledges,
 // and a cornice. Everything protrudes from the block, so no face is coplanar with a visible one.
-void addBuilding(StreetMeshes& meshes, std::mt19937& engine, float side, float z0, float width)
+void addBuilding(StreetMeshes& meshes, std::mt19937& engine, float side, float z0, float width,
+                 float minHeight = 10.0f, unsigned heightSteps = 31)
 {
     const FacadeFrame frame{side};
-    const float height = 10.0f + static_cast<float>(engine() % 31);
+    const float height = minHeight + static_cast<float>(engine() % heightSteps);
     const float depth = 14.0f + static_cast<float>(engine() % 7);
     Mesh& facade = meshes.facades[engine() % meshes.facades.size()];
     const float z1 = z0 + width;
@@ -924,6 +925,97 @@ Scene makeStreet()
 }
 
 // ---------------------------------------------------------------------------------------------
+// canyon (LightSkin + BRSM, Fig. 6: "a commonly employed urban street scene" with "some colored
+// planes to illustrate color bleeding": the buildings on one side are lit by the light the planes
+// reflect)
+
+constexpr float kCanyonHalfLength = 24.0f; // a 48 m stretch of street, open at both ends
+constexpr std::uint32_t kCanyonSeed = 11u;
+constexpr float kCanyonSunElevation = 55.0f;    // degrees: high enough to light the -x half of the road
+constexpr float kCanyonBoardTilt = 30.0f;       // degrees from vertical, leaning towards -x
+
+Scene makeCanyon()
+{
+    Scene scene = newScene("canyon");
+    const int asphalt = addMaterial(scene, "asphalt", glm::vec3(0.1f));
+    const int sidewalk = addMaterial(scene, "sidewalk", glm::vec3(0.35f, 0.34f, 0.32f));
+    const int trim = addMaterial(scene, "trim", glm::vec3(0.3f, 0.29f, 0.27f));
+    const int glass = addMaterial(scene, "glass", glm::vec3(0.05f, 0.06f, 0.07f), 0.25f, 1.0f);
+    StreetMeshes meshes{{}, newMesh("trim", trim), newMesh("glass", glass)};
+    // Light facades, so that the boards' colours show on them.
+    const std::array<std::pair<const char*, glm::vec3>, 3> facadeColours{{
+        {"facade_white", {0.75f, 0.74f, 0.72f}},
+        {"facade_cream", {0.7f, 0.64f, 0.52f}},
+        {"facade_grey", {0.55f, 0.55f, 0.55f}},
+    }};
+    for (const auto& [name, albedo] : facadeColours)
+        meshes.facades.push_back(newMesh(name, addMaterial(scene, name, albedo)));
+
+    // Buildings of 10-16 m on the +x side (towards the sun: they shade the +x half of the street
+    // and their own facades), 12-30 m on the -x side.
+    std::mt19937 engine(kCanyonSeed);
+    for (float side : {-1.0f, 1.0f}) {
+        float z = -kCanyonHalfLength;
+        while (z < kCanyonHalfLength - 8.0f) {
+            const float width = std::min(8.0f + static_cast<float>(engine() % 9), kCanyonHalfLength - z);
+            if (width < 8.0f) break;
+            if (side > 0.0f)
+                addBuilding(meshes, engine, side, z, width, 10.0f, 7);
+            else
+                addBuilding(meshes, engine, side, z, width, 12.0f, 19);
+            z += width;
+        }
+    }
+    Mesh road = newMesh("road", asphalt);
+    addRect(road, glm::vec3(-kRoadHalfWidth, 0.0f, -kCanyonHalfLength), glm::vec3(0.0f, 0.0f, 2.0f * kCanyonHalfLength),
+            glm::vec3(2.0f * kRoadHalfWidth, 0.0f, 0.0f), kStreetTessellation);
+    Mesh walks = newMesh("sidewalks", sidewalk);
+    for (float side : {-1.0f, 1.0f}) {
+        const float x0 = side * kRoadHalfWidth, x1 = side * kFacadeX;
+        addBox(walks, glm::vec3(std::min(x0, x1), 0.0f, -kCanyonHalfLength),
+               glm::vec3(std::max(x0, x1), kCurbHeight, kCanyonHalfLength), kStreetTessellation);
+    }
+    for (Mesh& facade : meshes.facades) placeMesh(scene, std::move(facade));
+    for (Mesh* mesh : {&meshes.trim, &meshes.glass, &road, &walks}) placeMesh(scene, std::move(*mesh));
+
+    // Three saturated boards (5 m x 4 m, 5 cm thick) on the sunlit -x half of the road, leaning
+    // back so that their fronts face the sun and the shaded +x facades.
+    const std::array<std::pair<const char*, glm::vec3>, 3> boards{{
+        {"board_red", {0.8f, 0.08f, 0.06f}},
+        {"board_green", {0.1f, 0.7f, 0.12f}},
+        {"board_blue", {0.08f, 0.15f, 0.8f}},
+    }};
+    for (std::size_t i = 0; i < boards.size(); ++i) {
+        Mesh board = newMesh(boards[i].first, addMaterial(scene, boards[i].first, boards[i].second));
+        addBox(board, glm::vec3(0.0f, 0.0f, -2.5f), glm::vec3(0.05f, 4.0f, 2.5f), 0.5f);
+        const float z = -14.0f + 14.0f * static_cast<float>(i);
+        const glm::mat4 at = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-3.0f, 0.0f, z)),
+                                         glm::radians(kCanyonBoardTilt), glm::vec3(0.0f, 0.0f, 1.0f));
+        addInstance(scene, addMesh(scene, std::move(board)), at);
+    }
+
+    // The sun from the +x side, a little towards +z, at 55 degrees (scenes/canyon-sun.json moves it).
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    const float elevation = glm::radians(kCanyonSunElevation);
+    const glm::vec3 horizontal = glm::normalize(glm::vec3(-1.0f, 0.0f, -0.3f));
+    sun.direction = glm::normalize(std::cos(elevation) * horizontal + glm::vec3(0.0f, -std::sin(elevation), 0.0f));
+    sun.color = glm::vec3(1.0f, 0.88f, 0.72f);
+    sun.intensity = 4.5f; // irradiance [W/m^2] on a surface facing the sun
+    scene.lights.push_back(sun);
+
+    // A pedestrian on the -x sidewalk looking across at the shaded +x facades (scenes/canyon-walk.json
+    // walks it down the street), and a view from above.
+    scene.cameras.push_back(
+        makeCamera("default", glm::vec3(-7.5f, 1.7f, -20.0f), glm::vec3(6.0f, 4.0f, -4.0f), 60.0f, 0.1f, 300.0f));
+    scene.cameras.push_back(
+        makeCamera("aerial", glm::vec3(-30.0f, 45.0f, 40.0f), glm::vec3(0.0f, 0.0f, 0.0f), 50.0f, 1.0f, 500.0f));
+    scene.validate();
+    return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
 // glossy (VSGL Fig. 1 and 5: glossy, normal-mapped surfaces lit by a moving light)
 
 constexpr float kGlossyHalfWidth = 5.0f;   // the room spans x in [-5, 5] m
@@ -1026,7 +1118,7 @@ Scene makeGlossy()
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"caustics", "cornell", "furnace", "glossy", "maze", "street"};
+    return {"canyon", "caustics", "cornell", "furnace", "glossy", "maze", "street"};
 }
 
 bool isBuiltinScene(const std::string& name)
@@ -1037,6 +1129,7 @@ bool isBuiltinScene(const std::string& name)
 
 Scene makeBuiltinScene(const std::string& name)
 {
+    if (name == "canyon") return makeCanyon();
     if (name == "caustics") return makeCaustics(CausticsParams{});
     if (name == "cornell") return makeCornell();
     if (name == "furnace") return makeFurnace(FurnaceParams{});

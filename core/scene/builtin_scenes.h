@@ -1,4 +1,4 @@
-// Scenes vplgi generates itself (no external assets): caustics, cornell, furnace, glossy, maze, street.
+// Scenes vplgi generates itself (no external assets): canyon, caustics, cornell, furnace, glossy, maze, street.
 #pragma once
 
 #include <string>

@@ -2,6 +2,7 @@
 
 #include "core/util/error.h"
 #include "direct_technique.h"
+#include "lightskin_technique.h"
 #include "smcir_rt_technique.h"
 #include "vpl_technique.h"
 #include "vsgl_technique.h"
@@ -10,13 +11,15 @@ namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct", "ir", "smcir", "smcir-rt", "vpl-brsm", "vsgl"};
+    return {"direct", "ir", "lightskin", "lightskin-full", "smcir", "smcir-rt", "vpl-brsm", "vsgl"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
 {
     if (name == "direct") return std::make_unique<DirectTechnique>();
     if (name == "ir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::IR);
+    if (name == "lightskin") return std::make_unique<LightSkinTechnique>(false);
+    if (name == "lightskin-full") return std::make_unique<LightSkinTechnique>(true);
     if (name == "smcir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::SMCIR);
     if (name == "smcir-rt") return std::make_unique<SMCIRRayTracedTechnique>();
     if (name == "vsgl") return std::make_unique<VSGLTechnique>(false);

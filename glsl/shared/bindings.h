@@ -35,12 +35,21 @@ VPLGI_CONST int kBindingRSMLayers = 14;          // SSBO RSMLayerLight[] (glsl/s
 VPLGI_CONST int kBindingISMPoints = 15;          // SSBO vec4[]: the scene's surface points (xyz)
 VPLGI_CONST int kBindingISMLights = 16;          // SSBO vec4[]: the lights' records (position+valid, normal, ...)
 
+// Storage buffers of LightSkin (gl/techniques/lightskin_technique, glsl/shared/lightskin_gpu.h).
+VPLGI_CONST int kBindingLightCaches = 17;        // SSBO GpuLightCache[] (world space)
+VPLGI_CONST int kBindingLightCacheCells = 18;    // SSBO uint[]: first entry of each grid cell in the index list (+1 end)
+VPLGI_CONST int kBindingLightCacheIndices = 19;  // SSBO uint[]: cache indices, cell by cell
+VPLGI_CONST int kBindingProxyLights = 20;        // SSBO ProxyLight[]: per cache, diffuse and glossy
+VPLGI_CONST int kBindingViewSamples = 21;        // SSBO ViewSample[]: G-buffer samples at Halton points
+VPLGI_CONST int kBindingRSMLayerViews = 22;      // SSBO RSMLayerView[]: each RSM layer's depth row and texel size
+
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler
 VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (passes/rsm_downsample.comp)
 VPLGI_CONST int kImageVPLShadowMaps = 6; // r32f 2D array: the VPL paraboloid maps being written
 VPLGI_CONST int kImageISMMaps = 6;    // ISM maps (r32f seen as r32ui): the level being splatted, pulled from or pushed
 VPLGI_CONST int kImageISMCoarser = 7; // ISM maps (r32f seen as r32ui): the next coarser level
+VPLGI_CONST int kImageSelectedVALs = 1; // r32f map of the RSM texels LightSkin selected (its debug view)
 
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;

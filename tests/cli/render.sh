@@ -72,6 +72,18 @@ done
 "$vplgi" render --scene "$here/scenes/caustics.json" --technique vpl-brsm --width 64 --height 48 --set rsm.size=64 \
   --set vpl-brsm.count=128 --out "$work/vpl-brsm.png" --quiet >/dev/null
 test -s "$work/vpl-brsm.png"
+# LightSkin from its scene file (the canyon, coarse caches and a small RSM): indirect light on the
+# shaded facades, each debug view written and different from the final image.
+lightskin=(--scene "$here/scenes/canyon.json" --width 64 --height 36 --set rsm.size=64 --set lightskin.cacheDistance=8)
+"$vplgi" render "${lightskin[@]}" --set renderer.display=indirect --out "$work/lightskin-indirect.png" --quiet >/dev/null
+mean=$(mean_of "$work/lightskin-indirect.png")
+echo "canyon, lightskin indirect: mean display value $mean"
+python3 -c "import sys; sys.exit(0 if float('$mean') > 2 else 1)" || { echo "FAIL: lightskin's indirect light is black"; exit 1; }
+"$vplgi" render "${lightskin[@]}" --out "$work/lightskin-final.png" --quiet >/dev/null
+for view in lightskin.rsm lightskin.caches lightskin.importance lightskin.selected; do
+  "$vplgi" render "${lightskin[@]}" --set renderer.display=$view --out "$work/view-$view.png" --quiet >/dev/null
+  if cmp -s "$work/lightskin-final.png" "$work/view-$view.png"; then echo "FAIL: display=$view shows the final image"; exit 1; fi
+done
 
 # Each debug view (renderer.display) writes that view: every one differs from the final image.
 for view in direct albedo normal depth; do

@@ -117,7 +117,7 @@ int materialIndex(const Scene& scene, const std::string& name)
 
 TEST_CASE("builtin scenes: names, validity, default camera, source")
 {
-    const std::vector<std::string> expected{"caustics", "cornell", "furnace", "glossy", "maze", "street"};
+    const std::vector<std::string> expected{"canyon", "caustics", "cornell", "furnace", "glossy", "maze", "street"};
     REQUIRE(builtinSceneNames() == expected);
     CHECK_FALSE(isBuiltinScene("Cornell"));
     CHECK_FALSE(isBuiltinScene(""));
@@ -142,7 +142,7 @@ TEST_CASE("builtin scenes: unknown name throws Error naming the choices")
 {
     CHECK_THROWS_AS(makeBuiltinScene("nope"), Error);
     CHECK_THROWS_WITH(makeBuiltinScene("nope"),
-                      "unknown scene \"nope\" (built-in scenes: caustics, cornell, furnace, glossy, maze, street)");
+                      "unknown scene \"nope\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, street)");
 }
 
 TEST_CASE("builtin scenes: triangle winding agrees with the vertex normals")
@@ -186,7 +186,10 @@ TEST_CASE("builtin scenes: every surface seen from open space shows its front")
         {"caustics", {glm::vec3(0.0f, 0.3f, -0.3f), glm::vec3(0.2f, 1.0f, -0.9f), glm::vec3(0.5f, 0.4f, 1.5f),
                       glm::vec3(-0.3f, 0.5f, -1.6f)}},
         {"glossy", {glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(-4.0f, 3.5f, 3.0f), glm::vec3(4.5f, 0.3f, -3.5f)}},
-        {"maze", {}},
+        // Canyon: over the road, above both rows of roofs, and beyond both open ends.
+        {"canyon", {glm::vec3(0.0f, 5.0f, 0.0f), glm::vec3(-20.0f, 40.0f, 0.0f), glm::vec3(20.0f, 40.0f, 0.0f),
+                    glm::vec3(0.0f, 3.0f, -40.0f), glm::vec3(0.0f, 3.0f, 40.0f), glm::vec3(-6.0f, 1.0f, -12.0f)}},
+        {"maze", {}}, // last: its viewpoints are added below
     };
     // Street: above both rows of roofs.
     for (float z = -60.0f; z <= 60.0f; z += 20.0f) {
@@ -551,6 +554,40 @@ TEST_CASE("street: the sun lights the -x side's facades and leaves the +x side i
     // The roofs are in the sun.
     const glm::vec3 above(0.0f, 45.0f, 0.0f);
     CHECK_FALSE(segmentBlocked(triangles, above, above + 300.0f * towardsSun));
+}
+
+TEST_CASE("canyon: sunlit coloured boards face the shaded +x facades")
+{
+    const Scene scene = makeBuiltinScene("canyon");
+    const std::vector<Triangle> triangles = worldTriangles(scene);
+    const glm::vec3 towardsSun = -glm::normalize(scene.findLight("sun")->direction);
+    // The +x facades (x = 9 m, facing -x) between 2 and 8 m are in the buildings' own shadow.
+    int shadowed = 0, samples = 0;
+    for (float z = -20.0f; z <= 20.0f; z += 2.0f)
+        for (float y = 2.0f; y <= 8.0f; y += 3.0f, ++samples) {
+            const glm::vec3 p(8.95f, y, z);
+            shadowed += segmentBlocked(triangles, p, p + 300.0f * towardsSun) ? 1 : 0;
+        }
+    INFO("shadowed +x facade samples " << shadowed << " of " << samples);
+    CHECK(shadowed == samples);
+    // Every board's front (its +x face) is sunlit and sees the +x facade across the road.
+    int boards = 0;
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
+        if (mesh.name.rfind("board_", 0) != 0) continue;
+        ++boards;
+        const glm::mat4& m = instance.worldFromObject;
+        const glm::vec3 front = glm::vec3(m * glm::vec4(0.06f, 2.0f, 0.0f, 1.0f)); // just in front of the face
+        const glm::vec3 normal = glm::normalize(glm::vec3(m * glm::vec4(1.0f, 0.0f, 0.0f, 0.0f)));
+        INFO(mesh.name);
+        CHECK(glm::dot(normal, towardsSun) > 0.8f);
+        CHECK_FALSE(segmentBlocked(triangles, front, front + 300.0f * towardsSun));
+        const glm::vec3 facade(8.95f, 4.0f, front.z);
+        CHECK(glm::dot(normal, glm::normalize(facade - front)) > 0.5f);
+        CHECK_FALSE(segmentBlocked(triangles, front, facade));
+    }
+    CHECK(boards == 3);
 }
 
 namespace {

@@ -805,7 +805,7 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
         "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0]}]})") ==
           path + ": cameras[0]: \"target\" must be an array of 3 numbers");
     CHECK(errorFor(R"({"source": "builtin:nope"})") ==
-          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: caustics, cornell, furnace, glossy, maze, street)");
+          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, street)");
     CHECK(errorFor(R"({"source": "obj:x.obj"})") ==
           path + ": \"source\" must start with \"builtin:\" or \"gltf:\" (got \"obj:x.obj\")");
     CHECK(errorFor(R"({"name": "x"})") == path + ": needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -833,7 +833,7 @@ TEST_CASE("loadSceneSpec resolves built-in names and paths", "[scene_loader]")
     CHECK_FALSE(cornell.scene.cameras.empty());
 
     CHECK(errorOf([] { vplgi::loadSceneSpec("cornel"); }) ==
-          "unknown scene \"cornel\" (built-in scenes: caustics, cornell, furnace, glossy, maze, street; or a .json/.gltf/.glb path)");
+          "unknown scene \"cornel\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, street; or a .json/.gltf/.glb path)");
     const std::string missing = dir.file("missing.json");
     CHECK(errorOf([&] { vplgi::loadSceneSpec(missing); }) == missing + ": no such file");
 

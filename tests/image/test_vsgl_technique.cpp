@@ -22,6 +22,7 @@
 #include "determinism.h"
 #include "gl_test_context.h"
 #include "measured.h"
+#include "test_scenes.h"
 
 using namespace vplgi;
 
@@ -206,76 +207,11 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     CHECK(worstCoefficient < 4e-7);
 }
 
-namespace {
-
-// An unoccluded L: a floor and a wall meeting at x = -1, both Lambertian, and a spot light on the
-// floor near the wall; every surface point sees every other unoccluded, so visibility can be off.
-Scene cornerScene(float specular, float roughness)
-{
-    Scene scene;
-    scene.name = "vsgl corner";
-    auto material = [&](const char* name, glm::vec3 albedo) {
-        Material m;
-        m.name = name;
-        m.baseColor = glm::vec4(albedo, 1.0f);
-        m.specular = specular;
-        m.roughness = roughness;
-        scene.materials.push_back(m);
-        return static_cast<int>(scene.materials.size()) - 1;
-    };
-    auto quad = [&](int materialIndex, glm::vec3 origin, glm::vec3 edgeU, glm::vec3 edgeV) {
-        Mesh mesh;
-        const glm::vec3 n = glm::normalize(glm::cross(edgeU, edgeV));
-        for (glm::vec3 corner : {origin, origin + edgeU, origin + edgeU + edgeV, origin + edgeV}) {
-            Vertex v;
-            v.position = corner;
-            v.normal = n;
-            mesh.vertices.push_back(v);
-        }
-        mesh.indices = {0, 1, 2, 0, 2, 3};
-        mesh.material = materialIndex;
-        scene.meshes.push_back(mesh);
-        scene.instances.push_back(Instance{static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
-    };
-    quad(material("floor", glm::vec3(0.7f, 0.7f, 0.7f)), {-1.0f, 0.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});
-    quad(material("wall", glm::vec3(0.8f, 0.4f, 0.3f)), {-1.0f, 0.0f, -1.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
-    Light spot;
-    spot.name = "spot";
-    spot.type = LightType::Spot;
-    spot.position = {0.6f, 1.6f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(-0.9f, -1.6f, 0.0f));
-    spot.intensity = 6.0f;
-    spot.innerConeAngle = 0.3f;
-    spot.outerConeAngle = 0.45f;
-    scene.lights.push_back(spot);
-    Camera camera;
-    camera.name = "corner";
-    camera.position = {2.0f, 1.3f, 2.0f};
-    camera.target = {-0.4f, 0.5f, 0.0f};
-    scene.cameras.push_back(camera);
-    scene.validate();
-    return scene;
-}
-
-// Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.
-double relativeL1(const ImageRGBA32F& a, const ImageRGBA32F& b)
-{
-    double sum = 0.0, sumB = 0.0;
-    for (std::size_t i = 0; i + 3 < a.pixels.size(); i += 4) {
-        auto y = [](const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; };
-        sum += std::abs(y(&a.pixels[i]) - y(&b.pixels[i]));
-        sumB += y(&b.pixels[i]);
-    }
-    return sumB > 0.0 ? sum / sumB : 0.0;
-}
-
-} // namespace
-
 TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccluded corner as N grows",
           "[vsgl][image][numbers]")
 {
     test::ensureGLContext();
-    const Scene scene = cornerScene(0.0f, 1.0f); // Lambertian: the SG lobes reduce to exact integrals
+    const Scene scene = test::cornerScene(0.0f, 1.0f); // Lambertian: the SG lobes reduce to exact integrals
     const Camera& camera = scene.cameras[0];
     const int width = 48, height = 36;
     RayScene rays(scene);
@@ -285,7 +221,7 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
     params.jitterPixels = false; // pixel centres, as the rasteriser
     const ImageRGBA32F reference = renderReference(scene, rays, camera, width, height, params).image;
     params.seed = 2;
-    const double referenceNoise = relativeL1(renderReference(scene, rays, camera, width, height, params).image, reference);
+    const double referenceNoise = test::relativeL1(renderReference(scene, rays, camera, width, height, params).image, reference);
 
     const int counts[] = {256, 1024, 4096};
     double vsglError[3], vplError[3], between[3];
@@ -298,9 +234,9 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
         };
         const ImageRGBA32F vsgl = render("vsgl");
         const ImageRGBA32F vpl = render("vpl-brsm");
-        vsglError[i] = relativeL1(vsgl, reference);
-        vplError[i] = relativeL1(vpl, reference);
-        between[i] = relativeL1(vsgl, vpl);
+        vsglError[i] = test::relativeL1(vsgl, reference);
+        vplError[i] = test::relativeL1(vpl, reference);
+        between[i] = test::relativeL1(vsgl, vpl);
         if (i == 2) {
             test::saveTestImage("vsgl_corner_4096", vsgl);
             test::saveTestImage("vpl_brsm_corner_4096", vpl);
@@ -319,7 +255,7 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
 TEST_CASE("vsgl and vpl-brsm images are bit-identical over runs", "[vsgl][vsgl-determinism]")
 {
     test::ensureGLContext();
-    const Scene scene = cornerScene(1.0f, 0.3f); // glossy: the SG paths too
+    const Scene scene = test::cornerScene(1.0f, 0.3f); // glossy: the SG paths too
     const Camera& camera = scene.cameras[0];
     for (const std::string technique : {"vsgl", "vpl-brsm"}) {
         const Settings settings = {{"rsm.size", "64"}, {technique + ".count", "300"}};

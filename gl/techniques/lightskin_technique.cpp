@@ -1,0 +1,327 @@
+#include "lightskin_technique.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "core/util/error.h"
+#include "core/util/params.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/importance.h"
+#include "glsl/shared/lightskin_gpu.h"
+#include "glsl/shared/rsm.h"
+
+namespace vplgi {
+
+namespace {
+
+// Where the cache distribution is kept between runs: $VPLGI_CACHE_DIR, as for the path-traced
+// references, else out/cache (core/lightskin/light_caches.h adds its own subfolder).
+std::string cacheDirectory()
+{
+    const char* dir = std::getenv("VPLGI_CACHE_DIR");
+    return dir && *dir ? std::string(dir) : std::string("out/cache");
+}
+
+// The dispatch that runs one work-group of kLightSkinGroupSize invocations per cache: caches along
+// y, in rows of kLightSkinGroupRows (the GL minimum of work-groups per axis is 65535).
+glm::ivec3 perCacheInvocations(int caches)
+{
+    const int rows = std::min(caches, shared::kLightSkinGroupRows);
+    const int slices = (caches + shared::kLightSkinGroupRows - 1) / shared::kLightSkinGroupRows;
+    return glm::ivec3(shared::kLightSkinGroupSize, std::max(rows, 1), std::max(slices, 1));
+}
+
+} // namespace
+
+void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
+{
+    if (selection) {
+        v.field("lightskin.valCount", valCount, 1, 65536,
+                "N_sVAL: virtual area lights selected from the RSM per frame (section 5: 2048, 4096, 8192)");
+        v.field("lightskin.viewSamples", viewSamples, 1, 65536,
+                "N_VS: Halton view samples of the importance, eq. (10) (section 4: 512; 256 as an option)");
+        v.field("lightskin.importanceClamp", importanceClamp, 1e-6f, 1e6f,
+                "eq. (11): the squared distance in the importance is clamped to at least clamp^2 [m] (the paper: 1)");
+        v.field("lightskin.seed", seed, "seed of the selection");
+        v.field("lightskin.animateSeed", animateSeed, "new selection uniforms every frame (default: the same every frame)");
+    }
+    v.field("lightskin.weightEpsilon", weightEpsilon, 0.0f, 1.0f,
+            "epsilon_p of eq. (6), keeps the proxy position defined where no VAL reaches the cache");
+    v.field("lightskin.fluxWeights", fluxWeights,
+            "weight the proxy position (eq. 5/13) by the VALs' flux too (MATH.md 9.3; not in the paper)");
+    v.field("lightskin.interpolationExponent", interpolationExponent, 0.0f, 16.0f,
+            "p of eq. (8): the distance falloff of the cache weights (the paper gives none; 1 = linear)");
+    v.field("lightskin.occlusion", occlusion, "indirect occlusion by double projection (section 3)");
+    v.field("lightskin.exactArea", exactArea,
+            "VAL area: the texel's tilted footprint (MATH.md 9.1) instead of eq. (1)'s disk across the light's view");
+    caches.visitParams(v);
+    rsm.visitParams(v);
+}
+
+LightSkinTechnique::LightSkinTechnique(bool full) : mFull(full) {}
+
+LightSkinTechnique::~LightSkinTechnique() = default;
+
+void LightSkinTechnique::visitParams(ParamVisitor& v)
+{
+    mParams.visitParams(v, !mFull);
+}
+
+void LightSkinTechnique::createPasses(const gl::ShaderLoader& shaders)
+{
+    mRSM = std::make_unique<RSMPass>(shaders);
+    mSampler = std::make_unique<ImportanceSampler>(shaders, "VAL selection");
+    mViewSamplePass = ComputePass(shaders, "view samples", "passes/lightskin_view_samples.comp");
+    mImportancePass = ComputePass(shaders, "VAL importance", "passes/lightskin_importance.comp");
+    mMarkPass = ComputePass(shaders, "selected VALs", "passes/lightskin_mark_selected.comp");
+    mProxyPass = ComputePass(shaders, "proxy lights", "passes/lightskin_proxy.comp");
+    mOcclusionPass = ComputePass(shaders, "double projection", "passes/lightskin_occlusion.comp");
+    mShading = std::make_unique<FullscreenPass>(shaders, "interpolation", "passes/lightskin_shading.frag");
+    mCacheViewProgram = shaders.load("LightSkin cache view", {{GL_VERTEX_SHADER, "passes/lightskin_caches.vert"},
+                                                             {GL_FRAGMENT_SHADER, "passes/lightskin_caches.frag"}});
+}
+
+void LightSkinTechnique::setScene(const SceneContext& context)
+{
+    mScene = &context.scene;
+    mGpuScene = &context.gpuScene;
+    mProgress = context.progress;
+    createPasses(context.shaders);
+    mEmptyVertexArray = gl::VertexArray("LightSkin cache points");
+    mShaded = gl::RenderTarget("LightSkin radiance", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"}));
+    mCacheView = gl::RenderTarget("LightSkin caches", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"caches"}));
+    mCachesStale = true;
+    uploadCaches();
+}
+
+void LightSkinTechnique::uploadCaches()
+{
+    if (!mCachesStale || !mScene) return;
+    mCaches = distributeLightCaches(*mScene, mParams.caches, mProgress, cacheDirectory());
+    mCachesStale = false;
+    const auto count = static_cast<GLsizeiptr>(std::max<std::size_t>(mCaches.caches.size(), 1));
+    static_assert(sizeof(LightCache) == sizeof(shared::GpuLightCache), "LightCache is uploaded as GpuLightCache");
+    mCacheBuffer = gl::Buffer("light caches", count * static_cast<GLsizeiptr>(sizeof(shared::GpuLightCache)));
+    if (!mCaches.caches.empty())
+        mCacheBuffer.upload(0, static_cast<GLsizeiptr>(mCaches.caches.size() * sizeof(LightCache)), mCaches.caches.data());
+    const LightCacheGrid& grid = mCaches.grid;
+    mCellBuffer = gl::Buffer("light cache cells",
+                             static_cast<GLsizeiptr>(std::max<std::size_t>(grid.cellStart.size(), 1) * sizeof(std::uint32_t)));
+    if (!grid.cellStart.empty())
+        mCellBuffer.upload(0, static_cast<GLsizeiptr>(grid.cellStart.size() * sizeof(std::uint32_t)), grid.cellStart.data());
+    mIndexBuffer = gl::Buffer("light cache indices",
+                              static_cast<GLsizeiptr>(std::max<std::size_t>(grid.cacheIndices.size(), 1) * sizeof(std::uint32_t)));
+    if (!grid.cacheIndices.empty())
+        mIndexBuffer.upload(0, static_cast<GLsizeiptr>(grid.cacheIndices.size() * sizeof(std::uint32_t)),
+                            grid.cacheIndices.data());
+    mProxies = gl::Buffer("proxy lights", count * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
+}
+
+void LightSkinTechnique::reloadShaders(const gl::ShaderLoader& shaders)
+{
+    if (!mScene) return;
+    createPasses(shaders);
+}
+
+void LightSkinTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
+{
+    // A changed distribution parameter redistributes the caches (from the disk cache when it has them).
+    for (const std::string& key : changedKeys)
+        if (key.rfind("lightskin.cache", 0) == 0) mCachesStale = true;
+}
+
+void LightSkinTechnique::update(const FrameContext&)
+{
+    uploadCaches();
+}
+
+void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target)
+{
+    const int cacheCount = static_cast<int>(mCaches.caches.size());
+    {
+        gl::PassTimer::Scope scope(frame.timer, "RSM");
+        mRSM->render(*mGpuScene, frame.lights, mParams.rsm);
+    }
+    const int layers = mRSM->layerCount();
+    const int size = mParams.rsm.size;
+    mShaded.resize(frame.width, frame.height);
+    mVALsPerCache = 0;
+    if (layers == 0 || cacheCount == 0) {
+        // No spot, point or directional light (or no surface): no one-bounce light from RSMs.
+        mShaded.clear();
+        glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0,
+                           0, 0, 0, frame.width, frame.height, 1);
+        return;
+    }
+
+    // Eq. (1)'s inputs per layer.
+    std::vector<shared::RSMLayerView> views;
+    for (const RSMView& view : mRSM->views()) {
+        const glm::mat4& m = view.viewFromWorld; // column-major: the view-space z row is m[i][2]
+        shared::RSMLayerView record;
+        record.depthRow = -glm::vec4(m[0][2], m[1][2], m[2][2], m[3][2]); // the view looks down -z
+        record.info = glm::vec4(view.texelFactor, view.kind == shared::kRSMLightDirectional ? 1.0f : 0.0f, 0.0f, 0.0f);
+        views.push_back(record);
+    }
+    const auto viewBytes = static_cast<GLsizeiptr>(views.size() * sizeof(shared::RSMLayerView));
+    if (mLayerViews.size() < viewBytes) mLayerViews = gl::Buffer("RSM layer views", viewBytes);
+    mLayerViews.upload(0, viewBytes, views.data());
+
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+        glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), mRSM->target().color(a).id());
+        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+    }
+    bindStorageBuffer(shared::kBindingRSMLayerViews, mLayerViews);
+    bindStorageBuffer(shared::kBindingRSMLayers, mRSM->layerLights());
+
+    const int valCount = mFull ? size * size * layers : mParams.valCount;
+    if (!mFull) {
+        {
+            gl::PassTimer::Scope scope(frame.timer, "importance");
+            // Eq. (10)'s view samples: the G-buffer at Halton points (MATH.md 9.8).
+            const auto sampleBytes = static_cast<GLsizeiptr>(mParams.viewSamples) *
+                                     static_cast<GLsizeiptr>(sizeof(shared::ViewSample));
+            if (mViewSamples.size() < sampleBytes) mViewSamples = gl::Buffer("view samples", sampleBytes);
+            gbuffer.bindForReading();
+            bindStorageBuffer(shared::kBindingViewSamples, mViewSamples);
+            mViewSamplePass.program().set("uCount", mParams.viewSamples);
+            mViewSamplePass.dispatch(mParams.viewSamples, 1, NextRead::StorageBuffer);
+
+            // Eq. (10)-(11) for every RSM texel, layers side by side.
+            if (!mImportance || mImportance.width() != size * layers || mImportance.height() != size) {
+                gl::TextureDesc desc;
+                desc.format = GL_R32F;
+                desc.width = size * layers;
+                desc.height = size;
+                mImportance = gl::Texture("VAL importance", desc);
+                mSelected = gl::Texture("selected VALs", desc);
+            }
+            bindImage(shared::kImageImportance, mImportance, GL_WRITE_ONLY);
+            const gl::Program& importance = mImportancePass.program();
+            importance.set("uSize", size);
+            importance.set("uLayers", layers);
+            importance.set("uViewCount", mParams.viewSamples);
+            importance.set("uClampDistance", mParams.importanceClamp);
+            mImportancePass.dispatch(size * layers, size, NextRead::Image);
+        }
+        {
+            gl::PassTimer::Scope scope(frame.timer, "SAT");
+            mSampler->build(mImportance, NextRead::None);
+        }
+        {
+            gl::PassTimer::Scope scope(frame.timer, "selection");
+            const std::uint32_t seed = mParams.animateSeed
+                                           ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
+                                           : mParams.seed;
+            mSampler->sample(mImportance, mParams.valCount, seed, NextRead::StorageBuffer);
+        }
+        // The importance view's range: 20x the mean texel importance, read back only while it is shown.
+        if (frame.display == std::string(name()) + ".importance") {
+            float total = 0.0f;
+            glGetNamedBufferSubData(mSampler->marginal().id(),
+                                    static_cast<GLintptr>((size * layers - 1) * static_cast<int>(sizeof(float))),
+                                    sizeof(float), &total);
+            mImportanceRange = 20.0f * total / static_cast<float>(size * size * layers);
+        }
+        // The selected texels for the debug view (a few thousand image stores).
+        if (frame.display == std::string(name()) + ".selected") {
+            const float zero = 0.0f;
+            glClearTexImage(mSelected.id(), 0, GL_RED, GL_FLOAT, &zero);
+            bindImage(shared::kImageSelectedVALs, mSelected, GL_WRITE_ONLY);
+            bindStorageBuffer(shared::kBindingImportanceSamples, mSampler->samples());
+            mMarkPass.program().set("uCount", mParams.valCount);
+            mMarkPass.dispatch(mParams.valCount, 1, NextRead::TextureFetch);
+        }
+    }
+    mVALsPerCache = valCount;
+
+    bindStorageBuffer(shared::kBindingLightCaches, mCacheBuffer);
+    bindStorageBuffer(shared::kBindingProxyLights, mProxies);
+    {
+        gl::PassTimer::Scope scope(frame.timer, "proxy lights");
+        if (!mFull) bindStorageBuffer(shared::kBindingImportanceSamples, mSampler->samples());
+        const gl::Program& proxy = mProxyPass.program();
+        proxy.set("uAllTexels", mFull ? 1 : 0);
+        proxy.set("uValCount", valCount);
+        proxy.set("uSelectionCount", mParams.valCount);
+        proxy.set("uSize", size);
+        proxy.set("uCacheCount", cacheCount);
+        proxy.set("uEpsilon", mParams.weightEpsilon);
+        proxy.set("uFluxWeights", mParams.fluxWeights ? 1 : 0);
+        proxy.set("uExactArea", mParams.exactArea ? 1 : 0);
+        mProxyPass.dispatch(perCacheInvocations(cacheCount), NextRead::StorageBuffer);
+    }
+    if (mParams.occlusion) {
+        gl::PassTimer::Scope scope(frame.timer, "occlusion");
+        mOcclusionPass.program().set("uCacheCount", cacheCount);
+        mOcclusionPass.dispatch(perCacheInvocations(cacheCount), NextRead::StorageBuffer);
+    }
+    {
+        gl::PassTimer::Scope scope(frame.timer, "interpolation");
+        gbuffer.bindForReading();
+        bindStorageBuffer(shared::kBindingLightCacheCells, mCellBuffer);
+        bindStorageBuffer(shared::kBindingLightCacheIndices, mIndexBuffer);
+        const gl::Program& shading = mShading->program();
+        const LightCacheGrid& grid = mCaches.grid;
+        shading.set("uGridOrigin", grid.origin);
+        shading.set("uGridCellSize", grid.cellSize);
+        glProgramUniform3i(shading.id(), shading.uniformLocation("uGridDims"), grid.dims.x, grid.dims.y, grid.dims.z);
+        shading.set("uExponent", mParams.interpolationExponent);
+        mShading->render(mShaded);
+    }
+    glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0, 0,
+                       0, 0, frame.width, frame.height, 1);
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+        glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+    if (frame.display == std::string(name()) + ".caches") drawCacheView(frame);
+}
+
+void LightSkinTechnique::drawCacheView(const FrameContext& frame)
+{
+    // The caches as points over the indirect image, coloured by the radiance their proxies give
+    // them (hidden ones dropped against the G-buffer's depth in the fragment shader).
+    gl::DebugGroup group(std::string(name()) + " cache view");
+    mCacheView.resize(frame.width, frame.height);
+    glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, mCacheView.color(0).id(), GL_TEXTURE_2D, 0, 0,
+                       0, 0, frame.width, frame.height, 1);
+    mCacheView.bindForDrawing();
+    glUseProgram(mCacheViewProgram.id());
+    bindStorageBuffer(shared::kBindingLightCaches, mCacheBuffer);
+    bindStorageBuffer(shared::kBindingProxyLights, mProxies);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(mEmptyVertexArray.id());
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(mCaches.caches.size()));
+    glBindVertexArray(0);
+    glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
+std::vector<std::pair<std::string, double>> LightSkinTechnique::frameStats() const
+{
+    return {{"caches", static_cast<double>(mCaches.caches.size())},
+            {"vals", static_cast<double>(mVALsPerCache)},
+            {"rsm layers", static_cast<double>(mRSM ? mRSM->layerCount() : 0)}};
+}
+
+std::vector<DebugView> LightSkinTechnique::debugViews() const
+{
+    const std::string t(name());
+    std::vector<DebugView> views;
+    const bool haveRSM = mRSM && mRSM->layerCount() > 0;
+    DebugView flux{t + ".rsm", "the RSM's incident flux, every layer (renderer.displayLayer picks one)",
+                   haveRSM ? &mRSM->target().color(shared::kRSMFlux) : nullptr, shared::kDebugViewColor};
+    flux.layerCount = 0;
+    views.push_back(flux);
+    views.push_back({t + ".caches", "the light caches as points coloured by the radiance of their diffuse proxy",
+                     mCacheView ? &mCacheView.color(0) : nullptr, shared::kDebugViewColor});
+    if (!mFull) {
+        views.push_back({t + ".importance", "eq. (10): importance of every RSM texel, layers side by side",
+                         mImportance ? &mImportance : nullptr, shared::kDebugViewCount,
+                         {0.0f, mImportanceRange > 0.0f ? mImportanceRange : 1.0f}});
+        views.push_back({t + ".selected", "the VALs selected this frame (1), layers side by side",
+                         mSelected ? &mSelected : nullptr, shared::kDebugViewScalar, {0.0f, 1.0f}});
+    }
+    return views;
+}
+
+} // namespace vplgi

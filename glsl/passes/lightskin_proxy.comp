@@ -1,0 +1,142 @@
+#version 450 core
+// LightSkin's proxy lights (papers/004 section 3 "Proxy Lights Generation", section 4 eq. 13-15):
+// one work-group per cache sums the virtual area lights (the N_sVAL selected RSM texels, each
+// weighted by 1/P_VAL with P_VAL = N_sVAL p, MATH.md 9.9; or, for lightskin-full, every texel with
+// P_VAL = 1) into a diffuse and a glossy proxy point light:
+//   position  x_p = sum (w/P) x_l / sum (w/P)                       eq. (5)/(13), weights eq. (6)
+//   extent    the per-axis standard deviation of the same weighted positions (section 3 "Occlusion")
+//   flux      Phi_p = 4 pi L_o(c) |x_p - c|^2 / (f_r(c, w, w_i) cos+)  eq. (7), L_o from eq. (14)/(15)
+// The cache's albedo cancels between eq. (14)/(15) and eq. (7) (MATH.md 9.4), and so does the
+// glossy colour and the Phong normalisation (k + 2)/(2 pi): the sums below leave them out.
+// Each invocation takes every 64th VAL; the sums are then reduced in shared memory in a fixed
+// tree order, so the result is the same on every run and thread count.
+#include "../shared/bindings.h"
+#define VPLGI_IMPORTANCE_TYPES_ONLY
+#include "../shared/importance.h"
+#include "../shared/lightskin.h"
+#include "../shared/lightskin_gpu.h"
+#include "../shared/rsm.h"
+#include "../shared/tonemap.h"
+#include "../lib/frame.glsl"
+
+layout(local_size_x = kLightSkinGroupSize) in;
+
+layout(binding = kUnitRSMSource) uniform sampler2DArray uSource[kRSMAttachmentCount];
+layout(std430, binding = kBindingImportanceSamples) readonly buffer Draws { ImportanceSample draws[]; };
+layout(std430, binding = kBindingRSMLayerViews) readonly buffer Views { RSMLayerView views[]; };
+layout(std430, binding = kBindingRSMLayers) readonly buffer Layers { RSMLayerLight layerLights[]; };
+layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
+layout(std430, binding = kBindingProxyLights) writeonly buffer Proxies { ProxyLight proxies[]; };
+
+uniform int uAllTexels;      // 1: every RSM texel (lightskin-full), 0: the selected draws
+uniform int uValCount;       // texels (all layers) or draws
+uniform int uSelectionCount; // N_sVAL
+uniform int uSize;           // RSM edge [texels]
+uniform int uCacheCount;
+uniform float uEpsilon;      // epsilon_p of eq. (6)
+uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too (MATH.md 9.3 option)
+uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
+
+// Per proxy: sum w, sum w v (3), sum w v^2 (3), radiance sum (3), v = x_l - c.
+const int kSums = 10;
+shared float sSums[2 * kSums][kLightSkinGroupSize];
+
+void main()
+{
+    int cache = int(gl_WorkGroupID.y) + int(gl_WorkGroupID.z) * kLightSkinGroupRows;
+    if (cache >= uCacheCount) return; // the whole group: no barrier is skipped by part of it
+    uint lane = gl_LocalInvocationID.x;
+    GpuLightCache c = caches[cache];
+    vec3 cp = c.positionArea.xyz;
+    vec3 cn = c.normalRoughness.xyz;
+    float alpha = max(c.normalRoughness.w * c.normalRoughness.w, 0.002);
+    float k = phongExponentFromRoughness(alpha);
+    vec3 view = normalize(frame.cameraPosition.xyz - cp);
+
+    float sums[2 * kSums];
+    for (int s = 0; s < 2 * kSums; ++s) sums[s] = 0.0;
+    for (int j = int(lane); j < uValCount; j += kLightSkinGroupSize) {
+        ivec3 texel;
+        float selection; // P_VAL: the expected number of times the VAL is drawn
+        if (uAllTexels != 0) {
+            texel = ivec3(j % uSize, (j / uSize) % uSize, j / (uSize * uSize));
+            selection = 1.0;
+        } else {
+            ImportanceSample d = draws[j];
+            if (d.x < 0 || d.probability <= 0.0) continue;
+            texel = ivec3(d.x % uSize, d.y, d.x / uSize);
+            selection = float(uSelectionCount) * d.probability;
+        }
+        vec4 normalCoverage = texelFetch(uSource[kRSMNormal], texel, 0);
+        if (normalCoverage.w == 0.0) continue;
+        vec3 flux = texelFetch(uSource[kRSMFlux], texel, 0).rgb * texelFetch(uSource[kRSMDiffuse], texel, 0).rgb;
+        if (flux == vec3(0.0)) continue;
+        vec3 xl = texelFetch(uSource[kRSMPosition], texel, 0).xyz;
+        vec3 nl = normalize(normalCoverage.xyz);
+        RSMLayerView layer = views[texel.z];
+        bool orthographic = layer.info.y != 0.0;
+        float depth = dot(layer.depthRow, vec4(xl, 1.0));
+        float area = lightskinValArea(depth, layer.info.x, orthographic);
+        if (uExactArea != 0) {
+            // MATH.md 9.1: the texel's ray from the light, its cosine to the view axis and to the surface.
+            vec4 light = layerLights[texel.z].positionKind;
+            vec3 ray = orthographic ? normalize(light.xyz) : normalize(xl - light.xyz);
+            float cosAxis = orthographic ? 1.0 : depth / max(distance(xl, light.xyz), 1e-6);
+            area = lightskinValAreaTilted(area, cosAxis, dot(nl, -ray));
+        }
+        vec3 v = xl - cp;
+        float d2 = dot(v, v);
+        if (d2 <= 0.0 || area <= 0.0) continue;
+        vec3 toLight = v * inversesqrt(d2);
+        float formFactor = diskFormFactor(area, dot(nl, -toLight), dot(cn, toLight), d2);
+        // Eq. (14)/(15) without the receiver's colour: Phi cos cos / (A + pi d^2) / P_VAL.
+        vec3 radiance = flux * (formFactor / area) / selection;
+        float cosMirror = dot(view, mirrorDirection(toLight, cn));
+        float lobe = phongLobe(cosMirror, k); // cos+^k theta_e
+        float base = (uFluxWeights != 0 ? luminanceRec709(flux) : 1.0) / selection;
+        float wd = base * proxyWeightDiffuse(formFactor, uEpsilon);
+        float wg = base * proxyWeightGlossy(formFactor, cosMirror, k, uEpsilon);
+        sums[0] += wd;
+        sums[1] += wd * v.x; sums[2] += wd * v.y; sums[3] += wd * v.z;
+        sums[4] += wd * v.x * v.x; sums[5] += wd * v.y * v.y; sums[6] += wd * v.z * v.z;
+        sums[7] += radiance.r; sums[8] += radiance.g; sums[9] += radiance.b;
+        sums[10] += wg;
+        sums[11] += wg * v.x; sums[12] += wg * v.y; sums[13] += wg * v.z;
+        sums[14] += wg * v.x * v.x; sums[15] += wg * v.y * v.y; sums[16] += wg * v.z * v.z;
+        sums[17] += radiance.r * lobe; sums[18] += radiance.g * lobe; sums[19] += radiance.b * lobe;
+    }
+    for (int s = 0; s < 2 * kSums; ++s) sSums[s][lane] = sums[s];
+    barrier();
+    for (uint stride = uint(kLightSkinGroupSize) / 2u; stride > 0u; stride /= 2u) {
+        if (lane < stride)
+            for (int s = 0; s < 2 * kSums; ++s) sSums[s][lane] += sSums[s][lane + stride];
+        barrier();
+    }
+    if (lane != 0u) return;
+
+    ProxyLight proxy;
+    for (int p = 0; p < 2; ++p) {
+        int o = p * kSums;
+        float w = sSums[o][0];
+        vec3 offsetSum = vec3(sSums[o + 1][0], sSums[o + 2][0], sSums[o + 3][0]);
+        vec3 squaredOffsetSum = vec3(sSums[o + 4][0], sSums[o + 5][0], sSums[o + 6][0]);
+        vec3 mean = w > 0.0 ? offsetSum / w : cn; // no VAL at all (epsilon 0): 1 m above the cache, no flux
+        vec3 radiance = vec3(sSums[o + 7][0], sSums[o + 8][0], sSums[o + 9][0]);
+        float distance2 = dot(mean, mean);
+        vec3 toProxy = distance2 > 0.0 ? mean * inversesqrt(distance2) : cn;
+        float cosCache = dot(cn, toProxy);
+        // f_r of eq. (7) without the colours that cancelled: 1 for the diffuse proxy, cos^k theta_e
+        // towards the proxy for the glossy one.
+        float brdf = p == 0 ? 1.0 : phongLobe(dot(view, mirrorDirection(toProxy, cn)), k);
+        vec3 flux = proxyFluxFromRadiance(radiance, distance2, vec3(brdf), cosCache);
+        vec4 positionRadius = vec4(cp + mean, proxySphereRadius(w, offsetSum, squaredOffsetSum));
+        if (p == 0) {
+            proxy.diffusePositionRadius = positionRadius;
+            proxy.diffuseFlux = vec4(flux, 1.0);
+        } else {
+            proxy.glossyPositionRadius = positionRadius;
+            proxy.glossyFlux = vec4(flux, 1.0);
+        }
+    }
+    proxies[cache] = proxy;
+}

@@ -1,0 +1,52 @@
+// LightSkin's GPU records (gl/techniques/lightskin_technique.h), named once for C++ and GLSL. The
+// maths (eq. 1-15 of papers/004) is in glsl/shared/lightskin.h; the nearest-cache search in
+// glsl/shared/light_cache_lookup.h.
+#ifndef VPLGI_SHARED_LIGHTSKIN_GPU_H
+#define VPLGI_SHARED_LIGHTSKIN_GPU_H
+#include "compat.h"
+
+VPLGI_SHARED_BEGIN
+
+// One light cache (core/lightskin/light_caches.h LightCache, the same 64 bytes).
+struct GpuLightCache {
+    vec4 positionArea;    // xyz world position [m], w the surface area it represents [m^2]
+    vec4 normalRoughness; // xyz unit normal, w mean perceptual roughness
+    vec4 diffuseMetallic; // rgb mean diffuse reflectance, w mean metallic
+    vec4 specular;        // rgb mean F0
+};
+
+// The two proxy lights of a cache (section 3, "Proxy Lights Generation"): isotropic point lights
+// that reproduce the cache's diffuse and glossy radiance (eq. 7).
+struct ProxyLight {
+    vec4 diffusePositionRadius; // xyz position x_p (eq. 5/13) [m], w bounding-sphere radius [m]
+    vec4 diffuseFlux;           // rgb flux Phi_p (eq. 7) [W], w visibility 1 - occlusion
+    vec4 glossyPositionRadius;
+    vec4 glossyFlux;
+};
+
+// A camera G-buffer sample at a Halton point (eq. 10's view samples).
+struct ViewSample {
+    vec4 positionValid; // xyz world position [m], w 1 where the pixel holds a surface
+    vec4 normal;        // xyz shading normal
+};
+
+// What eq. (1) needs of an RSM layer.
+struct RSMLayerView {
+    vec4 depthRow; // dot(depthRow, vec4(x, 1)) = the depth of world point x along the light's view axis [m]
+    vec4 info;     // x texel factor 4/(P00 P11 W H) (on-axis solid angle [sr] or, orthographic, area [m^2]),
+                   // y 1 for an orthographic (directional) layer, zw unused
+};
+
+VPLGI_CONST int kLightSkinGroupSize = 64;   // invocations per cache in the proxy and occlusion passes
+VPLGI_CONST int kLightSkinGroupRows = 32768; // caches per dispatch row (y); more go to z
+
+VPLGI_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(vplgi::shared::GpuLightCache) == 64, "GpuLightCache must match std430");
+static_assert(sizeof(vplgi::shared::ProxyLight) == 64, "ProxyLight must match std430");
+static_assert(sizeof(vplgi::shared::ViewSample) == 32, "ViewSample must match std430");
+static_assert(sizeof(vplgi::shared::RSMLayerView) == 32, "RSMLayerView must match std430");
+#endif
+
+#endif // VPLGI_SHARED_LIGHTSKIN_GPU_H

@@ -1,0 +1,86 @@
+// Small scenes the image tests build in code (no files): quads with one material each, and the
+// unoccluded corner the RSM-based techniques are checked on against the path tracer.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "core/scene/scene.h"
+#include "core/util/image_io.h"
+
+namespace vplgi::test {
+
+// Adds a material of this albedo (specular factor, perceptual roughness) and returns its index.
+inline int addTestMaterial(Scene& scene, const std::string& name, glm::vec3 albedo, float specular = 0.0f,
+                           float roughness = 1.0f)
+{
+    Material m;
+    m.name = name;
+    m.baseColor = glm::vec4(albedo, 1.0f);
+    m.specular = specular;
+    m.roughness = roughness;
+    scene.materials.push_back(m);
+    return static_cast<int>(scene.materials.size()) - 1;
+}
+
+// Adds the quad origin + [0,1] edgeU + [0,1] edgeV (two triangles, one instance), facing edgeU x edgeV.
+inline void addTestQuad(Scene& scene, int material, glm::vec3 origin, glm::vec3 edgeU, glm::vec3 edgeV)
+{
+    Mesh mesh;
+    const glm::vec3 n = glm::normalize(glm::cross(edgeU, edgeV));
+    for (glm::vec3 corner : {origin, origin + edgeU, origin + edgeU + edgeV, origin + edgeV}) {
+        Vertex v;
+        v.position = corner;
+        v.normal = n;
+        mesh.vertices.push_back(v);
+    }
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    mesh.material = material;
+    scene.meshes.push_back(mesh);
+    scene.instances.push_back(Instance{static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
+}
+
+// An unoccluded L: a floor and a wall meeting at x = -1, and a spot light on the floor near the
+// wall; every surface point sees every other unoccluded, so visibility can be off. `specular` and
+// `roughness` are both materials' (0 and 1: Lambertian).
+inline Scene cornerScene(float specular, float roughness)
+{
+    Scene scene;
+    scene.name = "corner";
+    addTestQuad(scene, addTestMaterial(scene, "floor", glm::vec3(0.7f, 0.7f, 0.7f), specular, roughness),
+                {-1.0f, 0.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});
+    addTestQuad(scene, addTestMaterial(scene, "wall", glm::vec3(0.8f, 0.4f, 0.3f), specular, roughness),
+                {-1.0f, 0.0f, -1.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
+    Light spot;
+    spot.name = "spot";
+    spot.type = LightType::Spot;
+    spot.position = {0.6f, 1.6f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(-0.9f, -1.6f, 0.0f));
+    spot.intensity = 6.0f;
+    spot.innerConeAngle = 0.3f;
+    spot.outerConeAngle = 0.45f;
+    scene.lights.push_back(spot);
+    Camera camera;
+    camera.name = "corner";
+    camera.position = {2.0f, 1.3f, 2.0f};
+    camera.target = {-0.4f, 0.5f, 0.0f};
+    scene.cameras.push_back(camera);
+    scene.validate();
+    return scene;
+}
+
+// Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.
+inline double relativeL1(const ImageRGBA32F& a, const ImageRGBA32F& b)
+{
+    double sum = 0.0, sumB = 0.0;
+    for (std::size_t i = 0; i + 3 < a.pixels.size(); i += 4) {
+        auto y = [](const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; };
+        sum += std::abs(y(&a.pixels[i]) - y(&b.pixels[i]));
+        sumB += y(&b.pixels[i]);
+    }
+    return sumB > 0.0 ? sum / sumB : 0.0;
+}
+
+} // namespace vplgi::test
