@@ -28,7 +28,7 @@ void LightCacheParams::visitParams(ParamVisitor& v)
 {
     v.field("lightskin.cacheDistance", distance, 0.0f, 1e4f,
             "d_eps: largest distance between a light cache and the surface it represents [m]; "
-            "0 = automatic, 2 sqrt(A / 4096) for the scene's surface area A");
+            "0 = automatic, 2 sqrt(A / 2048) for the scene's surface area A");
     v.field("lightskin.cacheAngle", angleDegrees, 1.0f, 89.0f,
             "theta_eps: largest angle between a light cache's normal and its surface's normals [degrees]");
     v.field("lightskin.cacheSnap", snap, "move each light cache onto the surface it averaged (paper step 4)");
@@ -37,11 +37,12 @@ void LightCacheParams::visitParams(ParamVisitor& v)
 
 namespace {
 
-constexpr int kBinsPerFaceEdge = 8;            // step 2: 6 x 8 x 8 direction bins
-constexpr double kSplitEpsilon = 1e-4;         // [fine voxel edges]: see splitAlong
-constexpr std::uint32_t kFileVersion = 1;      // bump when the distribution or the file layout changes
+constexpr int kBinsPerFaceEdge = 8;       // step 2: 6 x 8 x 8 direction bins
+constexpr double kSplitEpsilon = 1e-4;    // [fine voxel edges]: see splitAlong
+constexpr std::uint32_t kFileVersion = 1; // bump when the distribution or the file layout changes
 constexpr char kFileMagic[8] = {'V', 'P', 'L', 'G', 'L', 'S', 'C', 'A'};
-constexpr int kAutomaticCacheTarget = 4096;    // caches on a flat scene under the automatic d_eps
+constexpr int kAutomaticCacheTarget = 2048; // caches on a flat scene under the automatic d_eps
+constexpr double kMaxPieces = 1e7;          // step 1 pieces per scene: about 2 GB
 
 // The geometry of one cache before the material is attached (what the disk cache stores).
 struct CacheGeometry {
@@ -129,8 +130,8 @@ struct Pieces {
 // Voronoi partition for the area, at four times the pieces of a plain d_eps / 2 clip.
 struct VoxelGrid {
     glm::dvec3 origin{0.0};
-    double edge = 1.0;        // h [m]
-    glm::i64vec3 dims{1};     // voxels per axis
+    double edge = 1.0;    // h [m]
+    glm::i64vec3 dims{1}; // voxels per axis
 
     std::uint64_t key(const glm::i64vec3& v) const
     {
@@ -171,8 +172,10 @@ glm::dvec3 binCentre(int bin)
     return glm::normalize(v);
 }
 
-Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std::uint32_t>& indices,
-                    const VoxelGrid& grid)
+// `world`: vertex positions; `side`: per vertex a direction on the surface's outer side (the world
+// shading normal), which decides the side of each triangle's geometric normal.
+Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<glm::dvec3>& side,
+                    const std::vector<std::uint32_t>& indices, const VoxelGrid& grid)
 {
     const double fine = 0.5 * grid.edge;
     const std::size_t triangles = indices.size() / 3;
@@ -191,11 +194,16 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std:
             const glm::dvec3 cross = glm::cross(b - a, c - a);
             const double length = glm::length(cross);
             if (!(length > 0.0) || !std::isfinite(length)) continue; // degenerate: no area to represent
-            const glm::dvec3 normal = cross / length;
+            // The geometric normal on the side of the vertex normals, as the renderer keeps it
+            // (core/scene/surface.cpp): a mirroring transform reverses the winding, not the side.
+            const glm::dvec3 shading = side[indices[3 * t]] + side[indices[3 * t + 1]] + side[indices[3 * t + 2]];
+            const glm::dvec3 winding = cross / length; // the pieces' vertex order: their areas are > 0 along it
+            const glm::dvec3 normal = glm::dot(cross, shading) < 0.0 ? -winding : winding;
             stage.assign(1, Polygon{(a - grid.origin) / fine, (b - grid.origin) / fine, (c - grid.origin) / fine});
             for (int axis = 0; axis < 3; ++axis) {
                 next.clear();
-                for (const Polygon& p : stage) splitAlong(p, axis, next);
+                for (const Polygon& p : stage)
+                    splitAlong(p, axis, next);
                 stage.swap(next);
             }
             for (const Polygon& p : stage) {
@@ -203,10 +211,11 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std:
                 double area = 0.0;
                 glm::dvec3 centroid(0.0);
                 std::vector<glm::dvec3> corners;
-                for (const glm::dvec3& u : p) corners.push_back(grid.origin + u * fine);
+                for (const glm::dvec3& u : p)
+                    corners.push_back(grid.origin + u * fine);
                 for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
                     const double part =
-                        0.5 * glm::dot(glm::cross(corners[i] - corners[0], corners[i + 1] - corners[0]), normal);
+                        0.5 * glm::dot(glm::cross(corners[i] - corners[0], corners[i + 1] - corners[0]), winding);
                     area += part;
                     centroid += part * (corners[0] + corners[i] + corners[i + 1]) / 3.0;
                 }
@@ -242,8 +251,8 @@ Pieces clipInstance(const std::vector<glm::dvec3>& world, const std::vector<std:
 struct Cluster {
     glm::dvec3 position{0.0};
     glm::dvec3 normal{0.0, 1.0, 0.0};
-    double weight = 0.0;                // area of the pieces averaged [m^2]
-    std::vector<std::uint32_t> pieces;  // indices into Pieces::pieces, ascending
+    double weight = 0.0;               // area of the pieces averaged [m^2]
+    std::vector<std::uint32_t> pieces; // indices into Pieces::pieces, ascending
 };
 
 // Area-weighted mean position and normal of `members`.
@@ -269,21 +278,22 @@ Cluster averagePieces(const Pieces& all, std::vector<std::uint32_t> members)
 // theta_eps of it, and always the bin's own pieces: with theta_eps narrower than a bin (about 11
 // degrees across), the centre might be further than theta_eps from every piece in the bin, and the
 // loop would never end.
-void clusterVoxel(const Pieces& all, std::vector<std::uint32_t> remaining, double cosTheta,
-                  std::vector<Cluster>& out)
+void clusterVoxel(const Pieces& all, std::vector<std::uint32_t> remaining, double cosTheta, std::vector<Cluster>& out)
 {
     std::vector<std::pair<int, double>> binAreas;
     while (!remaining.empty()) {
         binAreas.clear();
-        for (std::uint32_t m : remaining) binAreas.emplace_back(all.pieces[m].bin, all.pieces[m].area);
-        std::sort(binAreas.begin(), binAreas.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (std::uint32_t m : remaining)
+            binAreas.emplace_back(all.pieces[m].bin, all.pieces[m].area);
+        std::stable_sort(binAreas.begin(), binAreas.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
         int bestBin = -1;
         double bestArea = -1.0;
         for (std::size_t i = 0; i < binAreas.size();) {
             double sum = 0.0;
             std::size_t j = i;
-            for (; j < binAreas.size() && binAreas[j].first == binAreas[i].first; ++j) sum += binAreas[j].second;
+            for (; j < binAreas.size() && binAreas[j].first == binAreas[i].first; ++j)
+                sum += binAreas[j].second;
             if (sum > bestArea) {
                 bestArea = sum;
                 bestBin = binAreas[i].first;
@@ -372,13 +382,13 @@ public:
         return glm::clamp(glm::i64vec3(u), glm::i64vec3(-1), mGrid.dims);
     }
     // Calls f(cluster index) for every cluster in `cell` (cells outside [-1, dims] hold none).
-    template <class F>
-    void forCell(const glm::i64vec3& cell, F&& f) const
+    template <class F> void forCell(const glm::i64vec3& cell, F&& f) const
     {
         if (glm::any(glm::lessThan(cell, glm::i64vec3(-1))) || glm::any(glm::greaterThan(cell, mGrid.dims))) return;
         const std::uint64_t k = key(cell);
         auto it = std::lower_bound(mEntries.begin(), mEntries.end(), std::make_pair(k, std::uint32_t(0)));
-        for (; it != mEntries.end() && it->first == k; ++it) f(it->second);
+        for (; it != mEntries.end() && it->first == k; ++it)
+            f(it->second);
     }
     std::int64_t maxRing() const { return std::max({mGrid.dims.x, mGrid.dims.y, mGrid.dims.z}) + 2; }
 
@@ -488,8 +498,10 @@ std::vector<std::uint32_t> assignPieces(const Pieces& all, const VoxelGrid& grid
                 const double covered = static_cast<double>(r) * grid.edge;
                 if (bestDistance2[0] < covered * covered) tier = 0;
             }
-            if (tier < 0) tier = bestDistance2[0] < std::numeric_limits<double>::infinity() ? 0
-                                 : bestDistance2[1] < std::numeric_limits<double>::infinity() ? 1 : 2;
+            if (tier < 0)
+                tier = bestDistance2[0] < std::numeric_limits<double>::infinity()   ? 0
+                       : bestDistance2[1] < std::numeric_limits<double>::infinity() ? 1
+                                                                                    : 2;
             owner[m] = best[static_cast<std::size_t>(tier)];
         }
     });
@@ -504,12 +516,14 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
     const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
     if (mesh.indices.empty()) return {};
     const glm::dmat4 worldFromObject(instance.worldFromObject);
-    std::vector<glm::dvec3> world(mesh.vertices.size());
+    const glm::dmat3 normalFromObject = glm::transpose(glm::inverse(glm::dmat3(worldFromObject)));
+    std::vector<glm::dvec3> world(mesh.vertices.size()), side(mesh.vertices.size());
     VoxelGrid grid;
     grid.edge = 0.5 * distance;
     glm::dvec3 lower(std::numeric_limits<double>::infinity()), upper(-std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < world.size(); ++i) {
         world[i] = glm::dvec3(worldFromObject * glm::dvec4(glm::dvec3(mesh.vertices[i].position), 1.0));
+        side[i] = normalFromObject * glm::dvec3(mesh.vertices[i].normal);
         lower = glm::min(lower, world[i]);
         upper = glm::max(upper, world[i]);
     }
@@ -520,13 +534,14 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
                                                  " m is too small for instance of mesh '" + mesh.name + "'");
 
     const double cosTheta = std::cos(glm::radians(static_cast<double>(params.angleDegrees)));
-    const Pieces all = clipInstance(world, mesh.indices, grid);
+    const Pieces all = clipInstance(world, side, mesh.indices, grid);
     if (all.pieces.empty()) return {};
 
     // Steps 2-3: pieces grouped by voxel (ascending key, then piece order), voxels in parallel, results
     // concatenated in voxel order.
     std::vector<std::uint32_t> order(all.pieces.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < order.size(); ++i)
+        order[i] = static_cast<std::uint32_t>(i);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return all.pieces[a].voxel < all.pieces[b].voxel; });
     std::vector<std::size_t> groupStart;
@@ -539,17 +554,20 @@ std::vector<CacheGeometry> distributeInstance(const Scene& scene, const Instance
                                            order.begin() + static_cast<std::ptrdiff_t>(groupStart[g + 1]));
         clusterVoxel(all, std::move(members), cosTheta, perVoxel[g]);
         if (params.snap)
-            for (Cluster& c : perVoxel[g]) snapCluster(all, c);
+            for (Cluster& c : perVoxel[g])
+                snapCluster(all, c);
     });
     std::vector<Cluster> clusters;
     for (std::vector<Cluster>& v : perVoxel)
-        for (Cluster& c : v) clusters.push_back(std::move(c));
+        for (Cluster& c : v)
+            clusters.push_back(std::move(c));
 
     if (params.join) joinClusters(all, grid, cosTheta, params.snap, clusters);
 
     const std::vector<std::uint32_t> owner = assignPieces(all, grid, cosTheta, clusters);
     std::vector<double> area(clusters.size(), 0.0);
-    for (std::size_t m = 0; m < owner.size(); ++m) area[owner[m]] += all.pieces[m].area; // in piece order
+    for (std::size_t m = 0; m < owner.size(); ++m)
+        area[owner[m]] += all.pieces[m].area; // in piece order
 
     std::vector<CacheGeometry> caches;
     for (std::size_t i = 0; i < clusters.size(); ++i) {
@@ -569,7 +587,10 @@ std::string instanceKey(const Scene& scene, const Instance& instance, float dist
     h.text("lightskin caches");
     h.value(kFileVersion);
     h.value(mesh.vertices.size());
-    for (const Vertex& v : mesh.vertices) h.value(v.position); // normals and texcoords do not move caches
+    for (const Vertex& v : mesh.vertices) { // positions place the caches, normals choose their side
+        h.value(v.position);
+        h.value(v.normal);
+    }
     h.value(mesh.indices.size());
     h.bytes(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
     h.value(instance.worldFromObject);
@@ -657,14 +678,9 @@ void writeInstanceFile(const std::filesystem::path& path, const std::vector<Cach
     }
 }
 
-} // namespace
-
-float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& params)
+// World-space area of every instance's triangles [m^2].
+double sceneSurfaceArea(const Scene& scene)
 {
-    if (params.distance > 0.0f) return params.distance;
-    // A flat surface of area A holds A / h^2 voxels of edge h = d_eps / 2, one cache each, so
-    // d_eps = 2 sqrt(A / N) gives about N caches; edges, corners and thin parts add to that. Two
-    // significant digits keep the value (and with it the disk cache) stable under small scene edits.
     double area = 0.0;
     for (const Instance& instance : scene.instances) {
         const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
@@ -672,10 +688,26 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
         for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
             glm::dvec3 p[3];
             for (int k = 0; k < 3; ++k)
-                p[k] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
+                p[k] = glm::dvec3(
+                    m *
+                    glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
             area += triangleAreaWorld(p[0], p[1], p[2]);
         }
     }
+    return area;
+}
+
+} // namespace
+
+float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& params)
+{
+    if (params.distance > 0.0f) return params.distance;
+    // A flat surface of area A holds A / h^2 voxels of edge h = d_eps / 2, one cache each, so
+    // d_eps = 2 sqrt(A / N) gives about N caches. Edges, corners and small parts add to that: on
+    // `street` the rule's N = 2048 gives about 5700 caches (the paper's street had about 5500),
+    // on `cornell` about 2300, on `maze` about 4700. Two significant digits keep the value (and with
+    // it the disk cache) stable under small scene edits.
+    const double area = sceneSurfaceArea(scene);
     require(area > 0.0 && std::isfinite(area),
             "light caches: scene '" + scene.name + "' has no surface area for the automatic d_eps");
     const double raw = 2.0 * std::sqrt(area / kAutomaticCacheTarget);
@@ -715,8 +747,10 @@ void buildLightCacheGrid(LightCacheSet& set, float cellSize)
                                   static_cast<std::size_t>(grid.dims.z);
     // Counting sort: caches visited in index order, so each cell's list is sorted by index.
     grid.cellStart.assign(cellCount + 1, 0);
-    for (const LightCache& c : set.caches) ++grid.cellStart[cellOf(c.position) + 1];
-    for (std::size_t i = 0; i < cellCount; ++i) grid.cellStart[i + 1] += grid.cellStart[i];
+    for (const LightCache& c : set.caches)
+        ++grid.cellStart[cellOf(c.position) + 1];
+    for (std::size_t i = 0; i < cellCount; ++i)
+        grid.cellStart[i + 1] += grid.cellStart[i];
     grid.cacheIndices.assign(set.caches.size(), 0);
     std::vector<std::uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
     for (std::size_t i = 0; i < set.caches.size(); ++i)
@@ -732,6 +766,13 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
             "light caches: lightskin.cacheDistance must be >= 0");
     LightCacheSet set;
     set.distance = resolveLightCacheDistance(scene, params);
+    // Pieces (step 1) cost about 200 bytes each, A / (d_eps / 4)^2 of them: refuse a d_eps that would
+    // need gigabytes rather than run out of memory.
+    const double fine = 0.25 * static_cast<double>(set.distance);
+    const double pieces = sceneSurfaceArea(scene) / (fine * fine);
+    require(pieces <= kMaxPieces, "light caches: lightskin.cacheDistance = " + std::to_string(set.distance) +
+                                      " m would cut the scene into about " + std::to_string(pieces) +
+                                      " pieces (at most " + std::to_string(kMaxPieces) + "); use a larger distance");
     const UntexturedMaterials materials = computeUntexturedMaterials(scene);
     const int total = static_cast<int>(scene.instances.size());
     if (progress) progress("lightskin caches", 0, total);
@@ -742,7 +783,8 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
         std::filesystem::path file;
         bool loaded = false;
         if (!cacheDir.empty()) {
-            file = std::filesystem::path(cacheDir) / "lightskin" / (instanceKey(scene, instance, set.distance, params) + ".bin");
+            file = std::filesystem::path(cacheDir) / "lightskin" /
+                   (instanceKey(scene, instance, set.distance, params) + ".bin");
             loaded = readInstanceFile(file, geometry);
         }
         if (loaded) {
@@ -752,7 +794,8 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
             ++set.instancesComputed;
             if (!cacheDir.empty()) writeInstanceFile(file, geometry);
         }
-        const std::size_t material = static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(instance.mesh)].material);
+        const std::size_t material =
+            static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(instance.mesh)].material);
         const glm::vec3 base = materials.baseColor[material];
         const float metallic = materials.metallic[material];
         const float specular = scene.materials[material].specular;
@@ -766,6 +809,17 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
             c.diffuse = (1.0f - metallic) * base;
             c.specular = glm::mix(glm::vec3(0.04f * specular), base, metallic);
             set.caches.push_back(c);
+        }
+        // A double-sided surface is lit and seen from both sides (the G-buffer turns its normal towards
+        // the viewer), so it gets the same caches facing the other way: without them the lookup, which
+        // takes only facing caches, finds none on its back.
+        if (scene.materials[material].doubleSided) {
+            const std::size_t front = set.caches.size() - geometry.size();
+            for (std::size_t k = front; k < front + geometry.size(); ++k) {
+                LightCache back = set.caches[k];
+                back.normal = -back.normal;
+                set.caches.push_back(back);
+            }
         }
         set.instanceStart.push_back(static_cast<std::uint32_t>(set.caches.size()));
         if (progress) progress("lightskin caches", i + 1, total);

@@ -10,8 +10,8 @@
 //
 // Overview (paper steps 1-5, per instance in world space; light_caches.cpp explains each choice):
 //  1. Voxelise at edge d_eps / 2: clip every triangle against a grid of edge d_eps / 4 (exact pieces,
-//     each with an area, centroid and geometric normal); a piece belongs to the d_eps / 2 voxel
-//     holding its centroid.
+//     each with an area, centroid and geometric normal, on the side of the vertex normals); a piece
+//     belongs to the d_eps / 2 voxel holding its centroid.
 //  2. Bin the pieces' normals per voxel: cube-map faces x 8 x 8 direction bins.
 //  3. Per voxel, while pieces remain: take the bin with the largest area; the cache is the
 //     area-weighted mean position and normal of the remaining pieces within theta_eps of that bin's
@@ -21,9 +21,12 @@
 //  Area: every piece goes to the nearest cache within theta_eps of its normal (else the nearest
 //  facing one, else the nearest); a cache's area is the sum of its pieces' areas.
 //
+// Double-sided materials get each cache twice, once per side (normal and area the same, the normal
+// negated), as the G-buffer shows them from both sides.
+//
 // Per model: the paper distributes per model in model space; our scenes are instances of meshes, so
 // caches are distributed per instance in world space, and the disk cache is keyed by the hash of the
-// mesh's positions and indices, the instance transform and the resolved parameters.
+// mesh's positions, normals and indices, the instance transform and the resolved parameters.
 //
 // References: Lensing & Broll 2013 (LightSkin), Lensing 2014 (thesis); the BRSM + LightSkin paper in
 // ../shared/papers/004_e7a2a609166487da.txt; ../shared/MATH.md section 9.
@@ -43,8 +46,8 @@
 namespace vplgi {
 
 struct LightCacheParams {
-    // d_eps [m]; 0: automatic, d_eps = 2 sqrt(A / 4096) for the scene's total triangle area A,
-    // rounded to two significant digits (a flat scene of area A then gets about 4096 caches; see
+    // d_eps [m]; 0: automatic, d_eps = 2 sqrt(A / 2048) for the scene's total triangle area A,
+    // rounded to two significant digits (a flat scene of area A then gets about 2048 caches; see
     // resolveLightCacheDistance).
     float distance = 0.0f;
     // theta_eps [degrees]. The paper gives no value. 30: the caches of two faces meeting at 90 degrees
@@ -57,19 +60,26 @@ struct LightCacheParams {
     void visitParams(ParamVisitor& visitor);
 };
 
-struct LightCache {          // world space; two vec4 rows each, std430-friendly (64 bytes)
-    glm::vec3 position{0.0f}; float area = 0.0f;      // area: the surface it represents (Voronoi) [m^2]
-    glm::vec3 normal{0.0f, 1.0f, 0.0f}; float roughness = 1.0f; // unit normal; perceptual roughness
-    glm::vec3 diffuse{0.0f}; float metallic = 0.0f;   // (1 - metallic) baseColor (see below)
-    glm::vec3 specular{0.0f}; float pad = 0.0f;       // F0 = mix(0.04 specular, baseColor, metallic)
+// clang-format off: one line per vec4 row, as the GPU reads it
+struct LightCache { // world space; four vec4 rows, std430 as it is (64 bytes)
+    glm::vec3 position{0.0f};
+    float area = 0.0f; // area: the surface it represents (Voronoi) [m^2]
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};
+    float roughness = 1.0f; // unit normal; perceptual roughness
+    glm::vec3 diffuse{0.0f};
+    float metallic = 0.0f; // (1 - metallic) baseColor (see below)
+    glm::vec3 specular{0.0f};
+    float pad = 0.0f; // F0 = mix(0.04 specular, baseColor, metallic)
 };
+// clang-format on
 static_assert(sizeof(LightCache) == 64, "LightCache is four vec4 rows");
 // Material columns: an instance has one mesh and a mesh one material, so every cache of an instance
 // has that material, untextured: the material factors times the means of their textures
 // (computeUntexturedMaterials, the same table SMCIR's untextured VPLs use).
 
-struct LightCacheGrid {      // uniform grid for the per-pixel lookup of the nearest caches
-    glm::vec3 origin{0.0f}; float cellSize = 1.0f; // cellSize = d_eps, grown when > kMaxLightCacheGridCells
+struct LightCacheGrid { // uniform grid for the per-pixel lookup of the nearest caches
+    glm::vec3 origin{0.0f};
+    float cellSize = 1.0f; // d_eps, grown when the grid would exceed kMaxLightCacheGridCells
     glm::ivec3 dims{0};
     std::vector<std::uint32_t> cellStart;    // dims.x*dims.y*dims.z + 1 offsets into cacheIndices
     std::vector<std::uint32_t> cacheIndices; // caches of each cell, sorted by index
@@ -79,10 +89,10 @@ constexpr std::int64_t kMaxLightCacheGridCells = std::int64_t(1) << 22; // 4M ce
 struct LightCacheSet {
     std::vector<LightCache> caches;
     LightCacheGrid grid;
-    float distance = 0;                        // the d_eps used [m] (resolved when params.distance = 0)
-    std::vector<std::uint32_t> instanceStart;  // caches of instance i: [instanceStart[i], instanceStart[i+1])
-    int instancesLoaded = 0;                   // instances read from the disk cache
-    int instancesComputed = 0;                 // instances distributed (and written when a cacheDir is given)
+    float distance = 0;                       // the d_eps used [m] (resolved when params.distance = 0)
+    std::vector<std::uint32_t> instanceStart; // caches of instance i: [instanceStart[i], instanceStart[i+1])
+    int instancesLoaded = 0;                  // instances read from the disk cache
+    int instancesComputed = 0;                // instances distributed (and written when a cacheDir is given)
 };
 
 // The d_eps that `params` ask for on `scene`: params.distance, or the automatic rule above when it is 0.
@@ -94,8 +104,8 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
 // `cacheDir` ("" = no disk cache): cacheDir/lightskin/<hex>.bin per instance. A missing, corrupt or
 // truncated file is recomputed (a warning on stderr for the last two); a file that cannot be written
 // is a warning, not an error. Deterministic: the same input gives the same bits at any TBB thread count.
-LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params,
-                                    const ProgressSink& progress, const std::string& cacheDir);
+LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params, const ProgressSink& progress,
+                                    const std::string& cacheDir);
 
 // Builds `set.grid` over set.caches with cell size `cellSize` (grown until the cell count is at most
 // kMaxLightCacheGridCells). distributeLightCaches calls it with d_eps.

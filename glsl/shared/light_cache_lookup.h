@@ -45,9 +45,9 @@ VPLGI_SHARED_BEGIN
 VPLGI_CONST int kMaxLightCacheNeighbours = 16; // the paper's 16 caches per point
 
 struct LightCacheNeighbours {
-    int count;                                     // valid entries, <= k
-    int index[kMaxLightCacheNeighbours];           // cache indices, nearest first
-    float distance2[kMaxLightCacheNeighbours];     // squared distances |x - c|^2 [m^2], ascending
+    int count;                                 // valid entries, <= k
+    int index[kMaxLightCacheNeighbours];       // cache indices, nearest first
+    float distance2[kMaxLightCacheNeighbours]; // squared distances |x - c|^2 [m^2], ascending
 };
 
 // True when candidate (d2, i) sorts before (e2, j): nearer first, the lower index on a tie.
