@@ -391,6 +391,12 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
         handleKey(scriptKeyCode(a[0]));
     } else if (c.name == "dump-params") {
         dumpPanelParams(a[0]);
+    } else if (c.name == "camera") {
+        Camera& camera = mSession->camera();
+        camera.position = glm::vec3(std::stof(a[0]), std::stof(a[1]), std::stof(a[2]));
+        camera.target = glm::vec3(std::stof(a[3]), std::stof(a[4]), std::stof(a[5]));
+        require(glm::length(camera.target - camera.position) > 0.0f, "the eye and the target must differ");
+        mFly.fromCamera(camera);
     } else if (c.name == "record") {
         if (a[0] == "start" && !mRecorder.recording()) toggleRecording("");
         else if (a[0] == "stop") {

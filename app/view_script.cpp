@@ -4,6 +4,8 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -52,6 +54,15 @@ std::string checkCommand(const ScriptCommand& c)
         return scriptKeyCode(c.args[0]) >= 0 ? "" : "unknown key \"" + c.args[0] + "\" (F1..F12, A..Z, 0..9, ESCAPE, SPACE)";
     }
     if (c.name == "dump-params") return count(1, 1, "dump-params FILE");
+    if (c.name == "camera") {
+        if (n != 6) return "usage: camera PX PY PZ TX TY TZ";
+        for (const std::string& a : c.args) {
+            char* end = nullptr;
+            const double v = std::strtod(a.c_str(), &end);
+            if (a.empty() || *end != '\0' || !std::isfinite(v)) return "camera: \"" + a + "\" is not a number";
+        }
+        return "";
+    }
     if (c.name == "record") {
         if (n == 1 && c.args[0] == "start") return "";
         if (n == 2 && c.args[0] == "stop") return "";
@@ -68,7 +79,7 @@ std::string checkCommand(const ScriptCommand& c)
         return "";
     }
     return "unknown command \"" + c.name +
-           "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, record, play, "
+           "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, camera, record, play, "
            "reload, vsync, resize, quit)";
 }
 

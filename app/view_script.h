@@ -15,6 +15,7 @@
 //   screenshot [PATH]       what the window shows as PNG (+ the linear frame as EXR beside it)
 //   key NAME                a key press: F1..F12, A..Z, 0..9, ESCAPE, SPACE
 //   dump-params FILE        the keys the panel generated, one a line
+//   camera PX PY PZ TX TY TZ          place the camera: eye and target [m]
 //   record start | record stop FILE    camera path, written as a scene-file animation
 //   play on|off             play the scene's animations at the fixed step 1/--fps per frame
 //   reload                  reload shaders (as R)
