@@ -1,5 +1,7 @@
 #include "camera_path.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -13,18 +15,59 @@ namespace vplgi {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
+namespace {
+
+// Millimetre-ish precision is plenty for a camera path and keeps the file readable ("0.278", not
+// "0.27799999713897705").
+double rounded(float v)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", static_cast<double>(v));
+    return std::strtod(text, nullptr);
+}
+
+// dump(2) puts every array element on its own line; arrays of numbers go on one line, like the
+// hand-written scene files.
+std::string collapseNumberArrays(const std::string& text)
+{
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '[') {
+            const std::size_t close = text.find(']', i);
+            const std::string inner = close == std::string::npos ? "" : text.substr(i + 1, close - i - 1);
+            if (!inner.empty() && inner.find_first_not_of("0123456789.eE+-, \n") == std::string::npos) {
+                std::string compact = "[";
+                bool space = false;
+                for (char c : inner) {
+                    if (c == ' ' || c == '\n') { space = true; continue; }
+                    if (space && compact.size() > 1 && compact.back() == ',') compact += ' ';
+                    space = false;
+                    compact += c;
+                }
+                out += compact + "]";
+                i = close;
+                continue;
+            }
+        }
+        out += text[i];
+    }
+    return out;
+}
+
+} // namespace
+
 void CameraPathRecorder::start()
 {
     mRecording = true;
     mKeys.clear();
 }
 
-void CameraPathRecorder::add(float time, const Camera& camera)
+void CameraPathRecorder::add(float time, const Camera& camera, float minStep)
 {
     if (!mRecording) return;
     if (mKeys.empty()) mStartTime = time;
     const float t = time - mStartTime;
-    if (!mKeys.empty() && !(t > mKeys.back().time)) return;
+    if (!mKeys.empty() && !(t > mKeys.back().time && t - mKeys.back().time >= 0.999f * minStep)) return;
     Keyframe key;
     key.time = t;
     key.position = camera.position;
@@ -54,17 +97,19 @@ std::string CameraPathRecorder::sceneFileText(const std::string& sceneSpec, cons
     }
     Json keys = Json::array();
     for (const Keyframe& k : mKeys)
-        keys.push_back({{"t", k.time},
-                        {"position", {k.position.x, k.position.y, k.position.z}},
-                        {"target", {k.target.x, k.target.y, k.target.z}}});
+        keys.push_back({{"t", rounded(k.time)},
+                        {"position", {rounded(k.position.x), rounded(k.position.y), rounded(k.position.z)}},
+                        {"target", {rounded(k.target.x), rounded(k.target.y), rounded(k.target.z)}}});
     Json animation = {{"name", "recorded"}, {"camera", cameraName}, {"keys", keys}};
     Json animations = Json::array();
     if (doc.contains("animations") && doc["animations"].is_array())
         for (const Json& a : doc["animations"])
-            if (!(a.contains("name") && a["name"] == "recorded")) animations.push_back(a);
+            // The recorded path replaces any other animation of the same camera (and an older recording).
+            if (!(a.contains("name") && a["name"] == "recorded") && !(a.contains("camera") && a["camera"] == cameraName))
+                animations.push_back(a);
     animations.push_back(animation);
     doc["animations"] = animations;
-    return doc.dump(2) + "\n";
+    return collapseNumberArrays(doc.dump(2)) + "\n";
 }
 
 void CameraPathRecorder::write(const std::string& path, const std::string& sceneSpec,

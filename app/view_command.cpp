@@ -407,8 +407,14 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
         if ((a[0] == "on") != mPlaying) togglePlayback();
         require(mPlaying == (a[0] == "on"), "play on: the scene has no animations");
     } else if (c.name == "reload") {
-        reloadShaders();
-        require(mShaderError.empty(), mShaderError);
+        mReloadRequested = true;
+    } else if (c.name == "wait-file") {
+        const auto start = std::chrono::steady_clock::now();
+        while (!std::filesystem::exists(a[0])) {
+            require(std::chrono::steady_clock::now() - start < std::chrono::seconds(120),
+                    a[0] + " did not appear within 120 s");
+            glfwWaitEventsTimeout(0.05);
+        }
     } else if (c.name == "vsync") {
         mVsync = a[0] == "on";
         glfwSwapInterval(mVsync ? 1 : 0);
@@ -486,7 +492,7 @@ void Viewer::run()
             window.requestClose();
         }
         mRecordTime = scripted ? static_cast<float>(mFrame + 1) / mOptions.fps : static_cast<float>(seconds);
-        mRecorder.add(mRecordTime, mSession->camera());
+        mRecorder.add(mRecordTime, mSession->camera(), 1.0f / mOptions.fps);
         mFrameMs[static_cast<std::size_t>(mHistoryNext)] = 1000.0f * dt;
         mGpuMs[static_cast<std::size_t>(mHistoryNext)] = static_cast<float>(mSession->renderer().timer().total());
         mHistoryNext = (mHistoryNext + 1) % kHistory;
@@ -630,7 +636,9 @@ void Viewer::drawUi(glm::ivec2 size)
         ImGui::SetNextWindowPos(ImVec2(0.5f * size.x, 0.0f), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
         ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(0.6f * size.x, 0.5f * size.y));
         ImGui::Begin("shader error", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-        ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "shader reload failed, the old shaders stay:");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
+        ImGui::TextWrapped("shader reload failed, the old shaders stay (R retries):");
+        ImGui::PopStyleColor();
         ImGui::TextWrapped("%s", mShaderError.c_str());
         ImGui::End();
     }
@@ -943,7 +951,7 @@ void Viewer::writeScreenshot(const std::string& path)
 int runView(const std::vector<std::string>& args)
 {
     std::string keys;
-    for (const auto& key : kKeys) keys += std::string("  ") + key[0] + ": " + key[1] + "\n";
+    for (const auto& key : kKeys) keys += std::string(keys.empty() ? "" : "\n") + "  " + key[0] + ": " + key[1];
     OptionParser parser("vplgi view", "Opens a window on a scene with a parameter panel (Dear ImGui). Keys:\n" + keys);
     addSessionOptions(parser);
     addSizeOptions(parser, "window", 960, 540);

@@ -54,6 +54,7 @@ std::string checkCommand(const ScriptCommand& c)
         return scriptKeyCode(c.args[0]) >= 0 ? "" : "unknown key \"" + c.args[0] + "\" (F1..F12, A..Z, 0..9, ESCAPE, SPACE)";
     }
     if (c.name == "dump-params") return count(1, 1, "dump-params FILE");
+    if (c.name == "wait-file") return count(1, 1, "wait-file PATH");
     if (c.name == "camera") {
         if (n != 6) return "usage: camera PX PY PZ TX TY TZ";
         for (const std::string& a : c.args) {
@@ -79,7 +80,7 @@ std::string checkCommand(const ScriptCommand& c)
         return "";
     }
     return "unknown command \"" + c.name +
-           "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, camera, record, play, "
+           "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, camera, record, play, wait-file, "
            "reload, vsync, resize, quit)";
 }
 

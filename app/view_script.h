@@ -18,7 +18,10 @@
 //   camera PX PY PZ TX TY TZ          place the camera: eye and target [m]
 //   record start | record stop FILE    camera path, written as a scene-file animation
 //   play on|off             play the scene's animations at the fixed step 1/--fps per frame
-//   reload                  reload shaders (as R)
+//   reload                  reload shaders (as R: a failed compile keeps the old programs and shows
+//                           the error in the window)
+//   wait-file PATH          hold this frame until PATH exists (at most 120 s): lets a test change
+//                           files (a shader) at a known frame
 //   vsync on|off
 //   resize W H              window size in screen coordinates
 //   quit

@@ -120,4 +120,45 @@ mkdir -p "$work/seq"
 for i in 0000 0001 0002 0003; do test -s "$work/seq/$i.png"; done
 path_diff=$(stats diff "$work/seq/0000.png" "$work/seq/0003.png")
 check "the replayed camera path moves the camera" "$path_diff > 1"
+
+# Hot shader reload: a broken shader keeps the old program (the scene still draws) and its error is
+# shown in the window; the repaired one reloads. wait-file holds the viewer at a frame while this
+# script edits a copy of glsl/ (VPLGI_GLSL_DIR).
+cp -r "$here/../../glsl" "$work/glsl"
+cp "$work/glsl/passes/tonemap.frag" "$work/tonemap.frag.orig"
+cat > "$work/reload.txt" <<SCRIPT
+panel off
+at 1 screenshot $s/before.png
+at 2 wait-file $work/broken
+     reload
+at 3 screenshot $s/reload-error.png
+at 4 wait-file $work/fixed
+     reload
+at 5 screenshot $s/reload-fixed.png
+     quit
+SCRIPT
+cat > "$work/reload.sh" <<DRIVE
+set -eu
+VPLGI_GLSL_DIR="$work/glsl" "$vplgi" view --scene cornell --technique direct --width 480 --height 320 \
+  --script "$work/reload.txt" > "$work/reload.log" 2>&1 &
+pid=\$!
+wait_for() { for i in \$(seq 1 1200); do [ -e "\$1" ] && return 0; kill -0 \$pid 2>/dev/null || break; sleep 0.1; done; echo "no \$1"; cat "$work/reload.log"; exit 1; }
+wait_for "$s/before.png"
+echo "this is not GLSL" >> "$work/glsl/passes/tonemap.frag"
+touch "$work/broken"
+wait_for "$s/reload-error.png"
+cp "$work/tonemap.frag.orig" "$work/glsl/passes/tonemap.frag"
+touch "$work/fixed"
+wait \$pid
+DRIVE
+xvfb-run -a -s "-screen 0 640x480x24" bash "$work/reload.sh" || { cat "$work/reload.log"; exit 1; }
+grep -q "shader reload failed, keeping the old shaders: glsl/passes/tonemap.frag:" "$work/reload.log" ||
+  { echo "FAIL: no reload error naming glsl/passes/tonemap.frag"; cat "$work/reload.log"; exit 1; }
+grep -q "^shaders reloaded" "$work/reload.log" || { echo "FAIL: the repaired shader did not reload"; exit 1; }
+error_top=$(stats diff "$s/reload-error.png" "$s/before.png" 140 0 340 30)
+error_bottom=$(stats diff "$s/reload-error.png" "$s/before.png" 0 240 480 320)
+fixed_diff=$(stats diff "$s/reload-fixed.png" "$s/before.png")
+check "the shader error is shown in the window" "$error_top > 10"
+check "the old programs still draw the scene" "$error_bottom < 0.5"
+check "after the repair the window is the scene again" "$fixed_diff < 0.5"
 echo "viewer script checks passed"
