@@ -771,10 +771,12 @@ void Viewer::drawTimings()
     const float latest = mFrameMs[static_cast<std::size_t>((mHistoryNext + kHistory - 1) % kHistory)];
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "frame %.1f ms (%.1f fps)", latest, latest > 0 ? 1000.0f / latest : 0.0f);
+    // (1.86's PlotLines takes a negative width literally, not as "up to the right edge".)
+    const float plotWidth = ImGui::GetContentRegionAvail().x;
     ImGui::PlotLines("##frame", mFrameMs.data(), kHistory, mHistoryNext, overlay, 0.0f, FLT_MAX,
-                     ImVec2(-1.0f, 50.0f * mUiScale));
+                     ImVec2(plotWidth, 50.0f * mUiScale));
     ImGui::PlotLines("##passes", mGpuMs.data(), kHistory, mHistoryNext, "passes total [ms]", 0.0f, FLT_MAX,
-                     ImVec2(-1.0f, 35.0f * mUiScale));
+                     ImVec2(plotWidth, 35.0f * mUiScale));
     // The technique's own counts and CPU stages (Technique::frameStats: VPLs, rays, maps re-rendered, ...).
     const auto stats = mSession->renderer().technique().frameStats();
     if (!stats.empty() && ImGui::BeginTable("stats", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
