@@ -18,7 +18,10 @@ std::string unitOf(const char* doc)
     const std::size_t close = text.rfind(']');
     if (open == std::string::npos || close == std::string::npos || close < open + 2) return "";
     const std::string unit = text.substr(open + 1, close - open - 1);
-    return unit.find_first_of("0123456789,") == std::string::npos ? unit : "";
+    if (unit.find_first_of("0123456789,") != std::string::npos) return "";
+    std::string escaped; // it goes into a printf format
+    for (char c : unit) escaped += c == '%' ? std::string("%%") : std::string(1, c);
+    return escaped;
 }
 
 std::string label(const std::string& key)

@@ -196,7 +196,7 @@ private:
 };
 
 Viewer::Viewer(const ViewOptions& options)
-    : mOptions(options), mShowPanel(options.panel), mWatchShaders(options.watchShaders), mPlaying(options.play),
+    : mOptions(options), mShowPanel(options.panel || !options.dumpPanelParams.empty()), mWatchShaders(options.watchShaders), mPlaying(options.play),
       mFrameMs(kHistory, 0.0f), mGpuMs(kHistory, 0.0f)
 {
     // Everything about the input is checked before a window opens.
@@ -390,6 +390,7 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
     } else if (c.name == "key") {
         handleKey(scriptKeyCode(a[0]));
     } else if (c.name == "dump-params") {
+        require(mShowPanel && mFrame > 0, "the panel has not been drawn yet (panel on, and at a frame after 0)");
         dumpPanelParams(a[0]);
     } else if (c.name == "camera") {
         Camera& camera = mSession->camera();
