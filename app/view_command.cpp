@@ -635,8 +635,9 @@ void Viewer::drawUi(glm::ivec2 size)
     if (mShowHelp) drawHelp();
     if (!mShaderError.empty()) {
         ImGui::SetNextWindowPos(ImVec2(0.5f * size.x, 0.0f), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
-        ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(0.6f * size.x, 0.5f * size.y));
-        ImGui::Begin("shader error", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+        // A fixed width (wrapped text cannot size an auto-resizing window) and a fitted height (0).
+        ImGui::SetNextWindowSize(ImVec2(std::min(0.7f * size.x, 640.0f * mUiScale), 0.0f), ImGuiCond_Always);
+        ImGui::Begin("shader error", nullptr, ImGuiWindowFlags_NoCollapse);
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
         ImGui::TextWrapped("shader reload failed, the old shaders stay (R retries):");
         ImGui::PopStyleColor();
