@@ -39,7 +39,10 @@ std::string collapseNumberArrays(const std::string& text)
                 std::string compact = "[";
                 bool space = false;
                 for (char c : inner) {
-                    if (c == ' ' || c == '\n') { space = true; continue; }
+                    if (c == ' ' || c == '\n') {
+                        space = true;
+                        continue;
+                    }
                     if (space && compact.size() > 1 && compact.back() == ',') compact += ' ';
                     space = false;
                     compact += c;
@@ -87,7 +90,8 @@ std::string CameraPathRecorder::sceneFileText(const std::string& sceneSpec, cons
         std::ifstream in(sceneSpec);
         require(in.good(), sceneSpec + ": cannot read");
         doc = Json::parse(in, nullptr, false);
-        require(doc.is_object() && doc.contains("source") && doc["source"].is_string(), sceneSpec + ": not a scene file");
+        require(doc.is_object() && doc.contains("source") && doc["source"].is_string(),
+                sceneSpec + ": not a scene file");
         // The copy lives elsewhere: a relative glTF source is made absolute (relative to the original).
         const std::string source = doc["source"].get<std::string>();
         if (source.rfind("gltf:", 0) == 0 && fs::path(source.substr(5)).is_relative())
@@ -105,7 +109,8 @@ std::string CameraPathRecorder::sceneFileText(const std::string& sceneSpec, cons
     if (doc.contains("animations") && doc["animations"].is_array())
         for (const Json& a : doc["animations"])
             // The recorded path replaces any other animation of the same camera (and an older recording).
-            if (!(a.contains("name") && a["name"] == "recorded") && !(a.contains("camera") && a["camera"] == cameraName))
+            if (!(a.contains("name") && a["name"] == "recorded") &&
+                !(a.contains("camera") && a["camera"] == cameraName))
                 animations.push_back(a);
     animations.push_back(animation);
     doc["animations"] = animations;

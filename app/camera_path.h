@@ -23,8 +23,8 @@ public:
 
     // The scene file: for a built-in or glTF `sceneSpec` one that sources it, for a scene file a
     // copy of it (relative glTF sources made absolute, the camera's other animations dropped); either
-    // way with the animation "recorded" of camera `cameraName` holding the keys. Throws Error when there are fewer than two keys or the
-    // file cannot be written.
+    // way with the animation "recorded" of camera `cameraName` holding the keys. Throws Error when there are fewer than
+    // two keys or the file cannot be written.
     std::string sceneFileText(const std::string& sceneSpec, const std::string& cameraName) const;
     void write(const std::string& path, const std::string& sceneSpec, const std::string& cameraName) const;
 

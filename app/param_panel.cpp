@@ -20,7 +20,8 @@ std::string unitOf(const char* doc)
     const std::string unit = text.substr(open + 1, close - open - 1);
     if (unit.find_first_of("0123456789,") != std::string::npos) return "";
     std::string escaped; // it goes into a printf format
-    for (char c : unit) escaped += c == '%' ? std::string("%%") : std::string(1, c);
+    for (char c : unit)
+        escaped += c == '%' ? std::string("%%") : std::string(1, c);
     return escaped;
 }
 
@@ -30,8 +31,7 @@ std::string label(const std::string& key)
     return (dot == std::string::npos ? key : key.substr(dot + 1)) + "##" + key;
 }
 
-template <typename T>
-std::string text(T value)
+template <typename T> std::string text(T value)
 {
     std::ostringstream s;
     s.precision(9); // round-trips a float through ParamSetter's strtod
@@ -148,7 +148,8 @@ void ParamPanel::choice(const std::string& key, int& index, const std::vector<st
         ImGui::EndCombo();
     }
     std::string options;
-    for (const std::string& n : names) options += (options.empty() ? "" : " | ") + n;
+    for (const std::string& n : names)
+        options += (options.empty() ? "" : " | ") + n;
     tooltip(key, doc, options);
 }
 

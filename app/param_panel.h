@@ -41,7 +41,7 @@ private:
     void edit(const std::string& key, const std::string& value);
 
     std::vector<std::string> mKeys;
-    std::string mGroup;     // prefix of the header being drawn
+    std::string mGroup; // prefix of the header being drawn
     bool mGroupOpen = false;
     Settings mEdits;
     // Integer fields are applied when the slider is released (a structural one such as rsm.size

@@ -98,13 +98,13 @@ std::filesystem::file_time_type newestFileTime(const std::string& directory)
 
 struct ViewOptions {
     SessionOptions session;
-    ImageSize size;             // the window's at start
+    ImageSize size; // the window's at start
     std::string screenshotDir;
-    std::string recordPath;     // where C writes the recorded camera path
-    std::string scriptPath;     // --script
+    std::string recordPath;      // where C writes the recorded camera path
+    std::string scriptPath;      // --script
     std::string dumpPanelParams; // --dump-panel-params FILE: the panel's keys after the first frame, then quit
-    float fps = 30.0f;          // animation playback and recording: 1/fps per frame
-    bool play = false;          // start with the animations playing
+    float fps = 30.0f;           // animation playback and recording: 1/fps per frame
+    bool play = false;           // start with the animations playing
     bool panel = true;
     bool watchShaders = false;
 };
@@ -172,10 +172,10 @@ private:
     bool mVsync = true;
     bool mWatchShaders = false;
     bool mPlaying = false;
-    std::string mInsetView;      // picture-in-picture view; empty: none
-    std::string mMessage;        // last error or notice, shown in the panel
+    std::string mInsetView; // picture-in-picture view; empty: none
+    std::string mMessage;   // last error or notice, shown in the panel
     bool mMessageIsError = false;
-    std::string mShaderError;    // the failed reload's message until a reload succeeds
+    std::string mShaderError; // the failed reload's message until a reload succeeds
     std::string mPendingTechnique;
     std::string mPendingScreenshot; // path; "" none
     bool mScreenshotRequested = false;
@@ -184,11 +184,11 @@ private:
     float mUiScale = 1.0f;
 
     // Clocks and history.
-    int mFrame = 0;               // frames rendered (the script's clock)
-    float mAnimationTime = 0.0f;  // advances 1/fps per frame while playing
-    float mRecordTime = 0.0f;     // the recorder's clock: wall clock, or 1/fps per frame with a script
-    std::vector<float> mFrameMs;  // wall-clock frame times, ring of kHistory
-    std::vector<float> mGpuMs;    // PassTimer totals, ring of kHistory
+    int mFrame = 0;              // frames rendered (the script's clock)
+    float mAnimationTime = 0.0f; // advances 1/fps per frame while playing
+    float mRecordTime = 0.0f;    // the recorder's clock: wall clock, or 1/fps per frame with a script
+    std::vector<float> mFrameMs; // wall-clock frame times, ring of kHistory
+    std::vector<float> mGpuMs;   // PassTimer totals, ring of kHistory
     int mHistoryNext = 0;
     double mLastShaderCheck = 0.0;
     std::filesystem::file_time_type mShaderTime{};
@@ -196,8 +196,8 @@ private:
 };
 
 Viewer::Viewer(const ViewOptions& options)
-    : mOptions(options), mShowPanel(options.panel || !options.dumpPanelParams.empty()), mWatchShaders(options.watchShaders), mPlaying(options.play),
-      mFrameMs(kHistory, 0.0f), mGpuMs(kHistory, 0.0f)
+    : mOptions(options), mShowPanel(options.panel || !options.dumpPanelParams.empty()),
+      mWatchShaders(options.watchShaders), mPlaying(options.play), mFrameMs(kHistory, 0.0f), mGpuMs(kHistory, 0.0f)
 {
     // Everything about the input is checked before a window opens.
     if (!options.scriptPath.empty()) mScript = ViewScript::load(options.scriptPath);
@@ -253,7 +253,7 @@ void Viewer::installKeyHandlers()
     mWindow->onKey = [this](int key, int action, int) {
         if (action != GLFW_PRESS) return;
         if (ImGui::GetIO().WantCaptureKeyboard) return; // typing into a field
-        try { // never through GLFW's C callback
+        try {                                           // never through GLFW's C callback
             handleKey(key);
         } catch (const std::exception& e) {
             mMessage = e.what();
@@ -268,17 +268,25 @@ void Viewer::installKeyHandlers()
 
 void Viewer::handleKey(int key)
 {
-    if (key == GLFW_KEY_ESCAPE) mWindow->requestClose();
-    else if (key == GLFW_KEY_F1) mShowHelp = !mShowHelp;
-    else if (key == GLFW_KEY_F2) mShowPanel = !mShowPanel;
-    else if (key == GLFW_KEY_F12) mScreenshotRequested = true;
-    else if (key == GLFW_KEY_R) mReloadRequested = true;
-    else if (key == GLFW_KEY_P) togglePlayback();
-    else if (key == GLFW_KEY_C) toggleRecording(mOptions.recordPath);
+    if (key == GLFW_KEY_ESCAPE)
+        mWindow->requestClose();
+    else if (key == GLFW_KEY_F1)
+        mShowHelp = !mShowHelp;
+    else if (key == GLFW_KEY_F2)
+        mShowPanel = !mShowPanel;
+    else if (key == GLFW_KEY_F12)
+        mScreenshotRequested = true;
+    else if (key == GLFW_KEY_R)
+        mReloadRequested = true;
+    else if (key == GLFW_KEY_P)
+        togglePlayback();
+    else if (key == GLFW_KEY_C)
+        toggleRecording(mOptions.recordPath);
     else if (key == GLFW_KEY_V) {
         mVsync = !mVsync;
         glfwSwapInterval(mVsync ? 1 : 0);
-    } else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) selectView(key - GLFW_KEY_0);
+    } else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)
+        selectView(key - GLFW_KEY_0);
 }
 
 void Viewer::selectView(int index)
@@ -338,7 +346,7 @@ void Viewer::switchTechnique(const std::string& name)
         if (key == "renderer.display" && std::find(views.begin(), views.end(), value) == views.end()) continue;
         options.settings.emplace_back(key, value);
     }
-    auto next = std::make_unique<Session>(options); // CPU only: a bad scene throws before anything changes
+    auto next = std::make_unique<Session>(options);  // CPU only: a bad scene throws before anything changes
     next->scene().lights = mSession->scene().lights; // moved lights stay where they are
     next->camera() = mSession->camera();
     mSession.reset();
@@ -367,14 +375,16 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
     const std::vector<std::string>& a = c.args;
     if (c.name == "set") {
         Settings settings;
-        for (const std::string& s : a) settings.push_back(parseSetting(s));
+        for (const std::string& s : a)
+            settings.push_back(parseSetting(s));
         applySettings(settings);
     } else if (c.name == "technique") {
         switchTechnique(a[0]);
     } else if (c.name == "display") {
         applySettings({{"renderer.display", a[0]}});
     } else if (c.name == "pip") {
-        if (a[0] == "off") mInsetView.clear();
+        if (a[0] == "off")
+            mInsetView.clear();
         else {
             const std::vector<std::string> names = displayViewNames(mSession->renderer().technique().debugViews());
             require(std::find(names.begin(), names.end(), a[0]) != names.end(), "no display view \"" + a[0] + "\"");
@@ -399,7 +409,8 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
         require(glm::length(camera.target - camera.position) > 0.0f, "the eye and the target must differ");
         mFly.fromCamera(camera);
     } else if (c.name == "record") {
-        if (a[0] == "start" && !mRecorder.recording()) toggleRecording("");
+        if (a[0] == "start" && !mRecorder.recording())
+            toggleRecording("");
         else if (a[0] == "stop") {
             require(mRecorder.recording(), "record stop: not recording");
             toggleRecording(a[1]);
@@ -430,7 +441,8 @@ void Viewer::dumpPanelParams(const std::string& path) const
 {
     std::ofstream out(path);
     require(out.good(), path + ": cannot write");
-    for (const std::string& key : mPanel.keys()) out << key << "\n";
+    for (const std::string& key : mPanel.keys())
+        out << key << "\n";
     out.close();
     require(out.good(), path + ": cannot write");
 }
@@ -686,8 +698,10 @@ void Viewer::drawPanel(glm::ivec2 size)
     }
     if (!mMessage.empty()) {
         ImGui::PushTextWrapPos(0.0f);
-        if (mMessageIsError) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "%s", mMessage.c_str());
-        else ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1.0f), "%s", mMessage.c_str());
+        if (mMessageIsError)
+            ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.45f, 1.0f), "%s", mMessage.c_str());
+        else
+            ImGui::TextColored(ImVec4(0.6f, 0.9f, 0.6f, 1.0f), "%s", mMessage.c_str());
         ImGui::PopTextWrapPos();
     }
 
@@ -806,7 +820,8 @@ void Viewer::drawLights()
     Light& light = lights[static_cast<std::size_t>(mSelectedLight)];
     if (ImGui::BeginCombo("light", light.name.c_str())) {
         for (std::size_t i = 0; i < lights.size(); ++i)
-            if (ImGui::Selectable((lights[i].name + "##" + std::to_string(i)).c_str(), static_cast<int>(i) == mSelectedLight))
+            if (ImGui::Selectable((lights[i].name + "##" + std::to_string(i)).c_str(),
+                                  static_cast<int>(i) == mSelectedLight))
                 mSelectedLight = static_cast<int>(i);
         ImGui::EndCombo();
     }
@@ -929,7 +944,8 @@ ImageRGBA8 Viewer::readWindow(glm::ivec2 size) const
     const std::size_t row = static_cast<std::size_t>(size.x) * 4;
     for (int y = 0; y < size.y; ++y) // GL rows are bottom to top
         std::copy_n(&pixels[static_cast<std::size_t>(size.y - 1 - y) * row], row, &image.pixels[y * row]);
-    for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255; // the window's alpha is not ours
+    for (std::size_t i = 3; i < image.pixels.size(); i += 4)
+        image.pixels[i] = 255; // the window's alpha is not ours
     return image;
 }
 
@@ -955,7 +971,8 @@ void Viewer::writeScreenshot(const std::string& path)
 int runView(const std::vector<std::string>& args)
 {
     std::string keys;
-    for (const auto& key : kKeys) keys += std::string(keys.empty() ? "" : "\n") + "  " + key[0] + ": " + key[1];
+    for (const auto& key : kKeys)
+        keys += std::string(keys.empty() ? "" : "\n") + "  " + key[0] + ": " + key[1];
     OptionParser parser("vplgi view", "Opens a window on a scene with a parameter panel (Dear ImGui). Keys:\n" + keys);
     addSessionOptions(parser);
     addSizeOptions(parser, "window", 960, 540);

@@ -16,7 +16,10 @@ namespace vplgi {
 
 namespace {
 
-bool isOnOff(const std::string& s) { return s == "on" || s == "off"; }
+bool isOnOff(const std::string& s)
+{
+    return s == "on" || s == "off";
+}
 
 // Checks one command's arguments; returns an error message or "".
 std::string checkCommand(const ScriptCommand& c)
@@ -36,7 +39,8 @@ std::string checkCommand(const ScriptCommand& c)
         const std::vector<std::string> names = techniqueNames();
         if (std::find(names.begin(), names.end(), c.args[0]) != names.end()) return "";
         std::string known;
-        for (const std::string& t : names) known += (known.empty() ? "" : ", ") + t;
+        for (const std::string& t : names)
+            known += (known.empty() ? "" : ", ") + t;
         return "unknown technique \"" + c.args[0] + "\" (known: " + known + ")";
     }
     if (c.name == "display") return count(1, 1, "display VIEW");
@@ -51,7 +55,8 @@ std::string checkCommand(const ScriptCommand& c)
     }
     if (c.name == "key") {
         if (n != 1) return "usage: key NAME";
-        return scriptKeyCode(c.args[0]) >= 0 ? "" : "unknown key \"" + c.args[0] + "\" (F1..F12, A..Z, 0..9, ESCAPE, SPACE)";
+        return scriptKeyCode(c.args[0]) >= 0 ? ""
+                                             : "unknown key \"" + c.args[0] + "\" (F1..F12, A..Z, 0..9, ESCAPE, SPACE)";
     }
     if (c.name == "dump-params") return count(1, 1, "dump-params FILE");
     if (c.name == "wait-file") return count(1, 1, "wait-file PATH");
@@ -75,12 +80,14 @@ std::string checkCommand(const ScriptCommand& c)
         for (const std::string& a : c.args) {
             char* end = nullptr;
             long v = std::strtol(a.c_str(), &end, 10);
-            if (a.empty() || *end != '\0' || v < 1 || v > 16384) return "resize: \"" + a + "\" is not a size in 1..16384";
+            if (a.empty() || *end != '\0' || v < 1 || v > 16384)
+                return "resize: \"" + a + "\" is not a size in 1..16384";
         }
         return "";
     }
     return "unknown command \"" + c.name +
-           "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, camera, record, play, wait-file, "
+           "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, camera, record, "
+           "play, wait-file, "
            "reload, vsync, resize, quit)";
 }
 
@@ -122,7 +129,8 @@ ViewScript ViewScript::parse(const std::string& text, const std::string& path)
         if (hash != std::string::npos) line.erase(hash);
         std::istringstream words(line);
         std::vector<std::string> tokens;
-        for (std::string w; words >> w;) tokens.push_back(w);
+        for (std::string w; words >> w;)
+            tokens.push_back(w);
         if (tokens.empty()) continue;
         const std::string where = path + ":" + std::to_string(lineNumber) + ": ";
         std::size_t first = 0;

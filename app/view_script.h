@@ -34,8 +34,8 @@ namespace vplgi {
 
 struct ScriptCommand {
     int frame = 0;
-    int line = 0;                  // 1-based line in the file, for messages
-    std::string name;              // "set", "technique", ...
+    int line = 0;     // 1-based line in the file, for messages
+    std::string name; // "set", "technique", ...
     std::vector<std::string> args;
 };
 
