@@ -1,5 +1,6 @@
 // `vplgi render`: headless EGL rendering to PNG (tone-mapped display image) or EXR (linear).
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -14,23 +15,76 @@
 
 namespace vplgi {
 
+namespace {
+
+// --out with one printf-style frame number ("frames/%04d.png"): the whole sequence is written, frame
+// i to the pattern formatted with i. Returns false for a plain path; throws Error for other '%' uses.
+bool isSequencePattern(const std::string& out)
+{
+    const std::size_t percent = out.find('%');
+    if (percent == std::string::npos) return false;
+    std::size_t i = percent + 1;
+    while (i < out.size() && i < percent + 4 && std::isdigit(static_cast<unsigned char>(out[i]))) ++i;
+    require(i < out.size() && out[i] == 'd' && out.find('%', i) == std::string::npos,
+            out + ": a sequence pattern has one frame number such as %04d (and no other '%')");
+    return true;
+}
+
+std::string framePath(const std::string& pattern, int frame)
+{
+    char path[4096];
+    std::snprintf(path, sizeof path, pattern.c_str(), frame);
+    return path;
+}
+
+void writeOutput(Session& session, const std::string& path)
+{
+    if (isFloatImagePath(path)) writeImage(path, session.renderer().readRadiance());
+    else writeImage(path, session.renderer().readDisplay());
+}
+
+// --list-params: every parameter of the technique(s), no GL context needed.
+int listParams(const OptionParser& parser)
+{
+    SessionOptions options;
+    options.sceneSpec = parser.has("scene") ? parser.get("scene") : "cornell";
+    options.camera = parser.get("camera");
+    for (const std::string& s : parser.getAll("set")) options.settings.push_back(parseSetting(s));
+    const std::string technique = parser.get("technique");
+    std::vector<std::string> techniques = technique == "all" ? techniqueNames() : std::vector<std::string>{technique};
+    for (const std::string& t : techniques) {
+        options.technique = t;
+        options.rejectUnknownSettings = techniques.size() == 1;
+        Session session(options);
+        std::printf("technique = %s\n%s", session.techniqueName().c_str(), session.parameterList().c_str());
+    }
+    return 0;
+}
+
+} // namespace
+
 int runRender(const std::vector<std::string>& args)
 {
     OptionParser parser("vplgi render", "Renders a scene headless (EGL, no window) and writes one image:\n"
                                         "a .png holds the tone-mapped display image, an .exr the linear radiance.");
     addSessionOptions(parser);
     addSizeOptions(parser, "image", 640, 360);
-    addAnimationOptions(parser, "frames to render; the last is written", 1);
-    parser.value("out", "FILE", "output image (.png or .exr); its directory must exist", "out/render.png");
+    addAnimationOptions(parser, "frames to render; the last is written (every one with a %04d --out pattern)", 1);
+    parser.value("out", "FILE", "output image (.png or .exr); its directory must exist; with a frame number "
+                 "pattern such as 'frames/%04d.png' every frame is written", "out/render.png");
+    parser.flag("list-params", "print every parameter key of the technique (--technique all: of each) with "
+                "its value, range or choices and doc, then exit (--scene defaults to cornell)");
     parser.flag("headless", "accepted for symmetry: render is always headless");
     parser.flag("quiet", "do not print the configuration and timings");
     if (!parser.parse(args)) return 0;
+    if (parser.has("list-params")) return listParams(parser);
 
     // Everything that can be wrong with the input is checked before a context exists.
     const ImageSize size = imageSize(parser, 1, 16384);
     const AnimationOptions animation = animationOptions(parser, 1000000);
     const std::string out = parser.get("out");
     checkOutputPath(out);
+    const bool sequence = isSequencePattern(out);
     const bool defaultOut = !parser.has("out");
     std::filesystem::path outDir = std::filesystem::path(out).parent_path();
     if (!defaultOut && !outDir.empty())
@@ -46,6 +100,10 @@ int runRender(const std::vector<std::string>& args)
     for (int frame = 0; frame < animation.frames; ++frame) {
         session.applyAnimations(animation.timeOf(frame));
         session.renderer().renderFrame(session.camera(), size.width, size.height, animation.timeOf(frame));
+        if (sequence) {
+            writeOutput(session, framePath(out, frame));
+            if (!quiet) std::printf("%s\n", framePath(out, frame).c_str());
+        }
     }
     if (!quiet) {
         gl::PassTimer& timer = session.renderer().timer();
@@ -57,9 +115,12 @@ int runRender(const std::vector<std::string>& args)
             std::printf("  %*s%-*s %9.2f ms\n", 2 * t.depth, "", std::max(1, 16 - 2 * t.depth), t.name.c_str(),
                         t.milliseconds);
     }
+    if (sequence) {
+        if (quiet) std::printf("%s\n", framePath(out, animation.frames - 1).c_str());
+        return 0;
+    }
     if (defaultOut && !outDir.empty()) std::filesystem::create_directories(outDir);
-    if (isFloatImagePath(out)) writeImage(out, session.renderer().readRadiance());
-    else writeImage(out, session.renderer().readDisplay());
+    writeOutput(session, out);
     std::printf("%s\n", out.c_str());
     return 0;
 }

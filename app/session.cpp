@@ -109,10 +109,11 @@ void Session::visitAll(ParamVisitor& visitor)
     if (mTechnique) mTechnique->visitParams(visitor);
 }
 
-void Session::createRenderer()
+void Session::createRenderer(ProgressSink progress)
 {
     mShaders = std::make_unique<gl::ShaderLoader>();
-    mRenderer = std::make_unique<Renderer>(*mShaders, mDescription.scene, mParams, std::move(mTechnique));
+    mRenderer = std::make_unique<Renderer>(*mShaders, mDescription.scene, mParams, std::move(mTechnique),
+                                           std::move(progress));
 }
 
 bool Session::applyAnimations(float time)
@@ -133,6 +134,13 @@ std::string Session::configuration()
     visitAll(dumper);
     return "scene = " + mDescription.scene.source + "\ntechnique = " + mTechniqueName + "\ncamera = " + mCameraName +
            "\n" + dumper.text();
+}
+
+std::string Session::parameterList()
+{
+    ParamDumper dumper;
+    visitAll(dumper);
+    return dumper.text();
 }
 
 std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpec, const std::string& camera,

@@ -79,17 +79,22 @@ std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpe
 class Session {
 public:
     explicit Session(const SessionOptions& options);  // CPU only: throws Error on any bad input
-    void createRenderer();                            // needs a current GL context
+    // Needs a current GL context; `progress` gets the technique's long precomputations.
+    void createRenderer(ProgressSink progress = terminalProgressBar());
 
     Scene& scene() { return mDescription.scene; }
     Camera& camera() { return mCamera; }
     Renderer& renderer() { return *mRenderer; }
     const std::string& techniqueName() const { return mTechniqueName; }
+    const std::string& cameraName() const { return mCameraName; }
     // Applies every animation of the scene at `time`; returns true when a light moved.
     bool applyAnimations(float time);
     const std::set<std::string>& usedKeys() const { return mUsedKeys; }
     // "key = value  # doc" lines of every parameter in effect.
     std::string configuration();
+    // Only the parameter lines of configuration(): every key with its value, range or choices and doc
+    // (`vplgi render --list-params`).
+    std::string parameterList();
 
 private:
     void visitAll(ParamVisitor& visitor);

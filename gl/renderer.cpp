@@ -48,17 +48,18 @@ void RendererParams::visitParams(ParamVisitor& v, const std::vector<std::string>
 }
 
 Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const RendererParams& params,
-                   std::unique_ptr<Technique> technique)
+                   std::unique_ptr<Technique> technique, ProgressSink progress)
     : mShaders(shaders), mScene(scene), mParams(params), mGpuScene(scene), mRays(scene), mTechnique(std::move(technique)),
       mShadows(shaders), mGBuffer(shaders), mDirect(shaders, "direct light", "passes/direct.frag"),
       mToneMap(shaders, "tone map", "passes/tonemap.frag"),
       mDirectTarget("direct light", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
       mIndirectTarget("indirect", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
       mOutput("output", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
+      mInset("inset", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
       mFrameUniforms("frame uniforms", sizeof(shared::FrameUniforms)),
       mTimer(gl::PassTimer::defaultMode())
 {
-    mTechnique->setScene(SceneContext{mScene, mGpuScene, mShaders, mRays, terminalProgressBar()});
+    mTechnique->setScene(SceneContext{mScene, mGpuScene, mShaders, mRays, std::move(progress)});
 }
 
 void Renderer::visitParams(ParamVisitor& visitor)
@@ -159,6 +160,33 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
     mTimer.endFrame();
     ++mFrameIndex;
     gl::checkDebugMessages();
+}
+
+const gl::Texture& Renderer::renderInset(const std::string& view)
+{
+    require(mOutput.width() > 0, "renderInset: no frame rendered yet");
+    const std::vector<std::string> names = displayViewNames(mTechnique->debugViews());
+    require(std::find(names.begin(), names.end(), view) != names.end(), "no display view \"" + view + "\"");
+    // The frame's inputs are still there (direct, indirect, G-buffer, frame uniforms); only the
+    // tone-map pass's view changes, so the inset costs one full-screen pass.
+    const std::string shown = mParams.display;
+    mParams.display = view;
+    glBindTextureUnit(shared::kUnitDirect, mDirectTarget.color(0).id());
+    glBindTextureUnit(shared::kUnitIndirect, mIndirectTarget.color(0).id());
+    glBindSampler(shared::kUnitDirect, 0);
+    glBindSampler(shared::kUnitIndirect, 0);
+    mGBuffer.gbuffer().bindForReading();
+    try {
+        bindDisplayView();
+    } catch (...) {
+        mParams.display = shown;
+        throw;
+    }
+    mParams.display = shown;
+    mInset.resize(mOutput.width(), mOutput.height());
+    mToneMap.render(mInset);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return mInset.color(0);
 }
 
 std::vector<DebugView> Renderer::debugViews() const

@@ -45,8 +45,10 @@ struct RendererParams {
 
 class Renderer {
 public:
+    // `progress` receives the technique's long precomputations (SceneContext::progress): a terminal
+    // bar by default, the viewer's window overlay there.
     Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const RendererParams& params,
-             std::unique_ptr<Technique> technique);
+             std::unique_ptr<Technique> technique, ProgressSink progress = terminalProgressBar());
 
     // Renders one frame of `camera` at width x height into the output targets.
     void renderFrame(const Camera& camera, int width, int height, float time = 0.0f);
@@ -59,6 +61,10 @@ public:
     ImageRGBA32F readRadiance() const;  // direct + indirect, linear, rows top to bottom
     ImageRGBA32F readDirect() const;    // direct only (incl. emission), linear, rows top to bottom
     const gl::Texture& displayTexture() const { return mOutput.color(0); }
+    // After renderFrame(): runs the tone-map pass once more with renderer.display = `view` (a name of
+    // displayViewNames()) into a second target of the output's size, for the viewer's
+    // picture-in-picture; the frame's own display image is unchanged. Throws Error for an unknown view.
+    const gl::Texture& renderInset(const std::string& view);
     // Every texture view renderer.display can show: the renderer's own, then the technique's.
     std::vector<DebugView> debugViews() const;
 
@@ -99,6 +105,7 @@ private:
     gl::RenderTarget mDirectTarget;   // direct light + emission, RGBA32F
     gl::RenderTarget mIndirectTarget; // the technique's indirect light, RGBA32F
     gl::RenderTarget mOutput;         // colour 0 display RGBA8 (sRGB bytes), colour 1 radiance RGBA32F
+    gl::RenderTarget mInset;          // the same for renderInset()
     gl::Texture mDisplayView;         // texture view of what renderer.display shows (re-made each frame)
     gl::Buffer mFrameUniforms;
     gl::Buffer mPointEmitters;

@@ -48,6 +48,8 @@ expect_error "renderer.exposure = -1 is outside" render --scene cornell --set re
 expect_error "no camera \"nocam\"" render --scene cornell --camera nocam --out a.png
 expect_error "must end in .png or .exr" render --scene cornell --out a.jpg
 expect_error "does not exist" render --scene cornell --out nodir/a.png
+expect_error "a sequence pattern has one frame number" render --scene cornell --out 'a%s.png'
+expect_error "unknown technique \"nope\"" render --list-params --technique nope
 expect_error "--scene is required" render
 expect_error "unknown command" paint
 expect_error "needs a value" render --scene
