@@ -38,7 +38,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     if (selection) {
         v.field("lightskin.valCount", valCount, 1, 65536,
                 "N_sVAL: virtual area lights selected from the RSM per frame (section 5: 2048, 4096, 8192)");
-        v.field("lightskin.viewSamples", viewSamples, 1, 65536,
+        // At most 32768: the importance pass loops over them per texel, and llvmpipe ends a shader's
+        // loops after 65535 iterations in all (lightskin_proxy.comp).
+        v.field("lightskin.viewSamples", viewSamples, 1, 32768,
                 "N_VS: Halton view samples of the importance, eq. (10) (section 4: 512; 256 as an option)");
         v.field("lightskin.importanceClamp", importanceClamp, 1e-6f, 1e6f,
                 "eq. (11): the squared distance in the importance is clamped to at least clamp^2 [m] (the paper: 1)");
