@@ -838,28 +838,63 @@ void addStreetProps(Mesh& poles, Mesh& bark, Mesh& foliage, Mesh& benches)
     }
 }
 
+using FacadeColours = std::vector<std::pair<const char*, glm::vec3>>;
+
+// The street's building meshes: trim and glass (shared materials) and one facade mesh per colour.
+StreetMeshes newStreetMeshes(Scene& scene, const FacadeColours& facadeColours)
+{
+    const int trim = addMaterial(scene, "trim", glm::vec3(0.3f, 0.29f, 0.27f));
+    const int glass = addMaterial(scene, "glass", glm::vec3(0.05f, 0.06f, 0.07f), 0.25f, 1.0f);
+    StreetMeshes meshes{{}, newMesh("trim", trim), newMesh("glass", glass)};
+    for (const auto& [name, albedo] : facadeColours)
+        meshes.facades.push_back(newMesh(name, addMaterial(scene, name, albedo)));
+    return meshes;
+}
+
+// Asphalt between the curbs and raised sidewalks up to the facades, for z in [-halfLength, halfLength].
+void addRoadAndSidewalks(Scene& scene, float halfLength)
+{
+    Mesh road = newMesh("road", addMaterial(scene, "asphalt", glm::vec3(0.1f)));
+    addRect(road, glm::vec3(-kRoadHalfWidth, 0.0f, -halfLength), glm::vec3(0.0f, 0.0f, 2.0f * halfLength),
+            glm::vec3(2.0f * kRoadHalfWidth, 0.0f, 0.0f), kStreetTessellation);
+    Mesh walks = newMesh("sidewalks", addMaterial(scene, "sidewalk", glm::vec3(0.35f, 0.34f, 0.32f)));
+    for (float side : {-1.0f, 1.0f}) {
+        const float x0 = side * kRoadHalfWidth, x1 = side * kFacadeX;
+        addBox(walks, glm::vec3(std::min(x0, x1), 0.0f, -halfLength),
+               glm::vec3(std::max(x0, x1), kCurbHeight, halfLength), kStreetTessellation);
+    }
+    placeMesh(scene, std::move(road));
+    placeMesh(scene, std::move(walks));
+}
+
+// The street's sun: warm, 4.5 W/m^2 on a surface facing it, `elevation` degrees above the horizon,
+// its light travelling along `horizontal` (the +y-free part of its direction).
+Light makeStreetSun(float elevationDegrees, const glm::vec3& horizontal)
+{
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    const float elevation = glm::radians(elevationDegrees);
+    sun.direction = glm::normalize(std::cos(elevation) * glm::normalize(horizontal) +
+                                   glm::vec3(0.0f, -std::sin(elevation), 0.0f));
+    sun.color = glm::vec3(1.0f, 0.88f, 0.72f);
+    sun.intensity = 4.5f; // irradiance [W/m^2] on a surface facing the sun
+    return sun;
+}
+
 Scene makeStreet()
 {
     Scene scene = newScene("street");
-    const int asphalt = addMaterial(scene, "asphalt", glm::vec3(0.1f));
-    const int sidewalk = addMaterial(scene, "sidewalk", glm::vec3(0.35f, 0.34f, 0.32f));
     const int ground = addMaterial(scene, "ground", glm::vec3(0.22f, 0.21f, 0.19f));
-    const int trim = addMaterial(scene, "trim", glm::vec3(0.3f, 0.29f, 0.27f));
-    const int glass = addMaterial(scene, "glass", glm::vec3(0.05f, 0.06f, 0.07f), 0.25f, 1.0f);
     const int metal = addMaterial(scene, "pole", glm::vec3(0.15f));
     const int barkMaterial = addMaterial(scene, "bark", glm::vec3(0.25f, 0.18f, 0.12f));
     const int foliageMaterial = addMaterial(scene, "foliage", glm::vec3(0.12f, 0.3f, 0.08f));
     const int woodMaterial = addMaterial(scene, "bench", glm::vec3(0.45f, 0.3f, 0.18f));
 
-    StreetMeshes meshes{{}, newMesh("trim", trim), newMesh("glass", glass)};
-    const std::array<std::pair<const char*, glm::vec3>, 4> facadeColours{{
-        {"facade_cream", {0.7f, 0.64f, 0.52f}},
-        {"facade_brick", {0.45f, 0.22f, 0.15f}},
-        {"facade_grey", {0.5f, 0.5f, 0.5f}},
-        {"facade_ochre", {0.62f, 0.45f, 0.25f}},
-    }};
-    for (const auto& [name, albedo] : facadeColours)
-        meshes.facades.push_back(newMesh(name, addMaterial(scene, name, albedo)));
+    StreetMeshes meshes = newStreetMeshes(scene, {{"facade_cream", {0.7f, 0.64f, 0.52f}},
+                                                  {"facade_brick", {0.45f, 0.22f, 0.15f}},
+                                                  {"facade_grey", {0.5f, 0.5f, 0.5f}},
+                                                  {"facade_ochre", {0.62f, 0.45f, 0.25f}}});
 
     std::mt19937 engine(kStreetSeed);
     for (float side : {-1.0f, 1.0f}) {
@@ -875,15 +910,7 @@ Scene makeStreet()
 
     // Ground: asphalt between the curbs, raised sidewalks, and a wide plane around (four pieces,
     // so nothing overlaps the asphalt).
-    Mesh road = newMesh("road", asphalt);
-    addRect(road, glm::vec3(-kRoadHalfWidth, 0.0f, -kStreetHalfLength), glm::vec3(0.0f, 0.0f, 2.0f * kStreetHalfLength),
-            glm::vec3(2.0f * kRoadHalfWidth, 0.0f, 0.0f), kStreetTessellation);
-    Mesh walks = newMesh("sidewalks", sidewalk);
-    for (float side : {-1.0f, 1.0f}) {
-        const float x0 = side * kRoadHalfWidth, x1 = side * kFacadeX;
-        addBox(walks, glm::vec3(std::min(x0, x1), 0.0f, -kStreetHalfLength),
-               glm::vec3(std::max(x0, x1), kCurbHeight, kStreetHalfLength), kStreetTessellation);
-    }
+    addRoadAndSidewalks(scene, kStreetHalfLength);
     Mesh plane = newMesh("ground", ground);
     constexpr float kGroundHalf = 100.0f, kGroundCell = 10.0f; // small: the shadow map covers the scene bounds
     const glm::vec3 alongZ(0.0f, 0.0f, 1.0f), alongX(1.0f, 0.0f, 0.0f); // z cross x = +y: faces up
@@ -900,21 +927,13 @@ Scene makeStreet()
     addStreetProps(poles, bark, foliage, benches);
 
     for (Mesh& facade : meshes.facades) placeMesh(scene, std::move(facade));
-    for (Mesh* mesh : {&meshes.trim, &meshes.glass, &road, &walks, &plane, &poles, &bark, &foliage, &benches})
+    for (Mesh* mesh : {&meshes.trim, &meshes.glass, &plane, &poles, &bark, &foliage, &benches})
         placeMesh(scene, std::move(*mesh));
 
     // The sun at 40 degrees elevation on the +x side (and somewhat towards +z): its light travels
     // across the street towards -x, so the +x side's facades (facing -x) and most of the street lie
     // in shadow while the upper floors of the -x side are sunlit.
-    Light sun;
-    sun.name = "sun";
-    sun.type = LightType::Directional;
-    const float elevation = glm::radians(40.0f);
-    const glm::vec3 horizontal = glm::normalize(glm::vec3(-1.0f, 0.0f, -0.8f));
-    sun.direction = glm::normalize(std::cos(elevation) * horizontal + glm::vec3(0.0f, -std::sin(elevation), 0.0f));
-    sun.color = glm::vec3(1.0f, 0.88f, 0.72f);
-    sun.intensity = 4.5f; // irradiance [W/m^2] on a surface facing the sun
-    scene.lights.push_back(sun);
+    scene.lights.push_back(makeStreetSun(40.0f, glm::vec3(-1.0f, 0.0f, -0.8f)));
 
     scene.cameras.push_back(
         makeCamera("default", glm::vec3(-2.5f, 1.7f, 70.0f), glm::vec3(1.0f, 4.0f, 0.0f), 60.0f, 0.1f, 800.0f));
@@ -937,19 +956,10 @@ constexpr float kCanyonBoardTilt = 30.0f;       // degrees from vertical, leanin
 Scene makeCanyon()
 {
     Scene scene = newScene("canyon");
-    const int asphalt = addMaterial(scene, "asphalt", glm::vec3(0.1f));
-    const int sidewalk = addMaterial(scene, "sidewalk", glm::vec3(0.35f, 0.34f, 0.32f));
-    const int trim = addMaterial(scene, "trim", glm::vec3(0.3f, 0.29f, 0.27f));
-    const int glass = addMaterial(scene, "glass", glm::vec3(0.05f, 0.06f, 0.07f), 0.25f, 1.0f);
-    StreetMeshes meshes{{}, newMesh("trim", trim), newMesh("glass", glass)};
     // Light facades, so that the boards' colours show on them.
-    const std::array<std::pair<const char*, glm::vec3>, 3> facadeColours{{
-        {"facade_white", {0.75f, 0.74f, 0.72f}},
-        {"facade_cream", {0.7f, 0.64f, 0.52f}},
-        {"facade_grey", {0.55f, 0.55f, 0.55f}},
-    }};
-    for (const auto& [name, albedo] : facadeColours)
-        meshes.facades.push_back(newMesh(name, addMaterial(scene, name, albedo)));
+    StreetMeshes meshes = newStreetMeshes(scene, {{"facade_white", {0.75f, 0.74f, 0.72f}},
+                                                  {"facade_cream", {0.7f, 0.64f, 0.52f}},
+                                                  {"facade_grey", {0.55f, 0.55f, 0.55f}}});
 
     // Buildings of 10-16 m on the +x side (towards the sun: they shade the +x half of the street
     // and their own facades), 12-30 m on the -x side.
@@ -966,17 +976,9 @@ Scene makeCanyon()
             z += width;
         }
     }
-    Mesh road = newMesh("road", asphalt);
-    addRect(road, glm::vec3(-kRoadHalfWidth, 0.0f, -kCanyonHalfLength), glm::vec3(0.0f, 0.0f, 2.0f * kCanyonHalfLength),
-            glm::vec3(2.0f * kRoadHalfWidth, 0.0f, 0.0f), kStreetTessellation);
-    Mesh walks = newMesh("sidewalks", sidewalk);
-    for (float side : {-1.0f, 1.0f}) {
-        const float x0 = side * kRoadHalfWidth, x1 = side * kFacadeX;
-        addBox(walks, glm::vec3(std::min(x0, x1), 0.0f, -kCanyonHalfLength),
-               glm::vec3(std::max(x0, x1), kCurbHeight, kCanyonHalfLength), kStreetTessellation);
-    }
+    addRoadAndSidewalks(scene, kCanyonHalfLength);
     for (Mesh& facade : meshes.facades) placeMesh(scene, std::move(facade));
-    for (Mesh* mesh : {&meshes.trim, &meshes.glass, &road, &walks}) placeMesh(scene, std::move(*mesh));
+    for (Mesh* mesh : {&meshes.trim, &meshes.glass}) placeMesh(scene, std::move(*mesh));
 
     // Three saturated boards (5 m x 4 m, 5 cm thick) on the sunlit -x half of the road, leaning
     // back so that their fronts face the sun and the shaded +x facades.
@@ -995,15 +997,7 @@ Scene makeCanyon()
     }
 
     // The sun from the +x side, a little towards +z, at 55 degrees (scenes/canyon-sun.json moves it).
-    Light sun;
-    sun.name = "sun";
-    sun.type = LightType::Directional;
-    const float elevation = glm::radians(kCanyonSunElevation);
-    const glm::vec3 horizontal = glm::normalize(glm::vec3(-1.0f, 0.0f, -0.3f));
-    sun.direction = glm::normalize(std::cos(elevation) * horizontal + glm::vec3(0.0f, -std::sin(elevation), 0.0f));
-    sun.color = glm::vec3(1.0f, 0.88f, 0.72f);
-    sun.intensity = 4.5f; // irradiance [W/m^2] on a surface facing the sun
-    scene.lights.push_back(sun);
+    scene.lights.push_back(makeStreetSun(kCanyonSunElevation, glm::vec3(-1.0f, 0.0f, -0.3f)));
 
     // A pedestrian on the -x sidewalk looking across at the shaded +x facades (scenes/canyon-walk.json
     // walks it down the street), and a view from above.
