@@ -105,9 +105,11 @@ TEST_CASE("lightskin: the selected VALs converge to all VALs as N grows, all VAL
     CHECK(toFull[1] < toFull[0]);
     CHECK(toFull[2] < toFull[1]);
     CHECK(toFull[2] < 0.25 * toFull[0]);
-    // LightSkin itself approximates (a point proxy per cache, interpolation): measured TBD.
-    CHECK(fullError < 0.5);
-    CHECK(std::abs(fullBias) < 0.3);
+    // LightSkin itself approximates (a point proxy per cache, interpolation): measured relative L1
+    // 0.076 and mean +4.2% against the path tracer (its own noise at 4096 spp is far below); the
+    // bounds are 2.5-3x those.
+    CHECK(fullError < 0.2);
+    CHECK(std::abs(fullBias) < 0.12);
 }
 
 TEST_CASE("lightskin: the double projection removes the light a wall blocks and keeps the light nothing blocks",
@@ -128,8 +130,10 @@ TEST_CASE("lightskin: the double projection removes the light a wall blocks and 
              << openOn << " " << openOff << ")");
     REQUIRE(openOff > 0.0);
     REQUIRE(blockedOff > 0.0); // without occlusion the caches see the lit floor through the blocker
+    // Measured 0 with the blocker ("near total") and 0.978 without it (2.2% falsely occluded, by the
+    // receiving wall's own neighbours near the horizon); the bound allows about 3x that.
     CHECK(blockedOn < 0.1 * blockedOff);
-    CHECK(openOn > 0.9 * openOff);
+    CHECK(openOn > 0.94 * openOff);
 }
 
 TEST_CASE("lightskin and lightskin-full images are bit-identical over runs", "[lightskin][lightskin-determinism]")
