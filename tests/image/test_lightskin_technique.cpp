@@ -14,10 +14,9 @@
 #include "core/trace/path_tracer.h"
 #include "core/trace/ray_scene.h"
 #include "gl/techniques/lightskin_technique.h"
-#include "buffer_readback.h"
-#include "determinism.h"
 #include "gl_test_context.h"
 #include "measured.h"
+#include "technique_determinism.h"
 #include "test_scenes.h"
 
 using namespace vplgi;
@@ -140,20 +139,8 @@ TEST_CASE("lightskin and lightskin-full images are bit-identical over runs", "[l
 {
     test::ensureGLContext();
     const Scene scene = test::cornerScene(1.0f, 0.3f); // glossy: the glossy proxies too
-    const Camera& camera = scene.cameras[0];
-    for (const std::string technique : {"lightskin", "lightskin-full"}) {
-        const Settings settings = {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.3"}};
-        std::unique_ptr<Renderer> first = test::makeTechniqueRenderer(scene, technique, settings);
-        const ImageRGBA32F a = test::renderIndirect(*first, camera, 32, 24);
-        const ImageRGBA32F b = test::renderIndirect(*first, camera, 32, 24); // the same renderer again
-        std::unique_ptr<Renderer> second = test::makeTechniqueRenderer(scene, technique, settings);
-        const ImageRGBA32F c = test::renderIndirect(*second, camera, 32, 24);
-        CHECK(test::firstBitDifference(a.pixels, b.pixels) == -1);
-        CHECK(test::firstBitDifference(a.pixels, c.pixels) == -1);
-        CHECK(meanLuminance(a) > 0.0); // something was lit
-        // tests/gl/threads_identical.sh compares these between LP_NUM_THREADS=1 and 2.
-        CHECK(test::recordHash(technique, test::hashBytes(a.pixels.data(), a.pixels.size() * sizeof(float))));
-    }
+    for (const std::string technique : {"lightskin", "lightskin-full"})
+        test::checkTechniqueBitIdentical(scene, technique, {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.3"}}, 32, 24);
 }
 
 TEST_CASE("lightskin: a scene without an RSM light renders no indirect light", "[lightskin][image]")

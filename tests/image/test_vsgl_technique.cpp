@@ -22,6 +22,7 @@
 #include "determinism.h"
 #include "gl_test_context.h"
 #include "measured.h"
+#include "technique_determinism.h"
 #include "test_scenes.h"
 
 using namespace vplgi;
@@ -256,22 +257,8 @@ TEST_CASE("vsgl and vpl-brsm images are bit-identical over runs", "[vsgl][vsgl-d
 {
     test::ensureGLContext();
     const Scene scene = test::cornerScene(1.0f, 0.3f); // glossy: the SG paths too
-    const Camera& camera = scene.cameras[0];
-    for (const std::string technique : {"vsgl", "vpl-brsm"}) {
-        const Settings settings = {{"rsm.size", "64"}, {technique + ".count", "300"}};
-        std::unique_ptr<Renderer> first = test::makeTechniqueRenderer(scene, technique, settings);
-        const ImageRGBA32F a = test::renderIndirect(*first, camera, 32, 24);
-        const ImageRGBA32F b = test::renderIndirect(*first, camera, 32, 24); // the same renderer again
-        std::unique_ptr<Renderer> second = test::makeTechniqueRenderer(scene, technique, settings);
-        const ImageRGBA32F c = test::renderIndirect(*second, camera, 32, 24);
-        CHECK(test::firstBitDifference(a.pixels, b.pixels) == -1);
-        CHECK(test::firstBitDifference(a.pixels, c.pixels) == -1);
-        double sum = 0.0;
-        for (float v : a.pixels) sum += v;
-        CHECK(sum > 0.0); // something was lit
-        // tests/gl/threads_identical.sh compares these between LP_NUM_THREADS=1 and 2.
-        CHECK(test::recordHash(technique, test::hashBytes(a.pixels.data(), a.pixels.size() * sizeof(float))));
-    }
+    for (const std::string technique : {"vsgl", "vpl-brsm"})
+        test::checkTechniqueBitIdentical(scene, technique, {{"rsm.size", "64"}, {technique + ".count", "300"}}, 32, 24);
 }
 
 TEST_CASE("vsgl and vpl-brsm: the imperfect shadow maps occlude the lights of both", "[vsgl][image][numbers]")
