@@ -194,4 +194,13 @@ void RSMPass::downsample(gl::PassTimer* timer)
     downsampleRSMLayout(mDownsample, mTarget, timer);
 }
 
+DebugView rsmFluxDebugView(const std::string& name, const RSMPass* rsm)
+{
+    const bool haveRSM = rsm && rsm->layerCount() > 0;
+    DebugView view{name, "the RSMs' incident flux, every layer (renderer.displayLayer picks one)",
+                   haveRSM ? &rsm->target().color(shared::kRSMFlux) : nullptr, shared::kDebugViewColor};
+    view.layerCount = 0;
+    return view;
+}
+
 } // namespace vplgi

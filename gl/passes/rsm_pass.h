@@ -75,6 +75,7 @@
 
 #include "../api/render_target.h"
 #include "../api/shader_loader.h"
+#include "../debug_view.h"
 #include "../gpu_scene.h"
 #include "compute_pass.h"
 #include "core/scene/direct_lights.h"
@@ -108,6 +109,12 @@ gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth);
 // Recomputes levels 1.. of every layer of an RSM-layout target from level 0 with `kernel`
 // (passes/rsm_downsample.comp), then issues the barriers for sampling, readback and image loads.
 void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& target, gl::PassTimer* timer = nullptr);
+
+class RSMPass;
+
+// The debug view `name` of an RSM pass's incident flux, every layer tiled (renderer.displayLayer
+// picks one); black while `rsm` is null or has no layer. Shared by the RSM techniques.
+DebugView rsmFluxDebugView(const std::string& name, const RSMPass* rsm);
 
 class RSMPass {
 public:

@@ -326,11 +326,7 @@ std::vector<DebugView> LightSkinTechnique::debugViews() const
 {
     const std::string t(name());
     std::vector<DebugView> views;
-    const bool haveRSM = mRSM && mRSM->layerCount() > 0;
-    DebugView flux{t + ".rsm", "the RSM's incident flux, every layer (renderer.displayLayer picks one)",
-                   haveRSM ? &mRSM->target().color(shared::kRSMFlux) : nullptr, shared::kDebugViewColor};
-    flux.layerCount = 0;
-    views.push_back(flux);
+    views.push_back(rsmFluxDebugView(t + ".rsm", mRSM.get()));
     views.push_back({t + ".caches", "the light caches as points coloured by the radiance of their diffuse proxy",
                      mCacheView ? &mCacheView.color(0) : nullptr, shared::kDebugViewColor});
     if (!mFull) {

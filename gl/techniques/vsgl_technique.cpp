@@ -221,10 +221,7 @@ std::vector<DebugView> VSGLTechnique::debugViews() const
     const std::string t(name());
     std::vector<DebugView> views;
     const bool haveRSM = mRSM && mRSM->layerCount() > 0;
-    DebugView flux{t + ".rsm", "the RSMs' incident flux, every layer (renderer.displayLayer picks one)",
-                   haveRSM ? &mRSM->target().color(shared::kRSMFlux) : nullptr, shared::kDebugViewColor};
-    flux.layerCount = 0;
-    views.push_back(flux);
+    views.push_back(rsmFluxDebugView(t + ".rsm", mRSM.get()));
     DebugView normals{t + ".rsmNormal", "the RSMs' normals", haveRSM ? &mRSM->target().color(shared::kRSMNormal) : nullptr,
                       shared::kDebugViewNormal};
     normals.layerCount = 0;

@@ -42,6 +42,21 @@ inline void addTestQuad(Scene& scene, int material, glm::vec3 origin, glm::vec3 
     scene.instances.push_back(Instance{static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
 }
 
+// A spot light; cone angles in radians.
+inline Light makeTestSpot(const std::string& name, glm::vec3 position, glm::vec3 direction, float intensity,
+                          float innerConeAngle, float outerConeAngle)
+{
+    Light spot;
+    spot.name = name;
+    spot.type = LightType::Spot;
+    spot.position = position;
+    spot.direction = glm::normalize(direction);
+    spot.intensity = intensity;
+    spot.innerConeAngle = innerConeAngle;
+    spot.outerConeAngle = outerConeAngle;
+    return spot;
+}
+
 // An unoccluded L: a floor and a wall meeting at x = -1, and a spot light on the floor near the
 // wall; every surface point sees every other unoccluded, so visibility can be off. `specular` and
 // `roughness` are both materials' (0 and 1: Lambertian).
@@ -53,15 +68,7 @@ inline Scene cornerScene(float specular, float roughness)
                 {-1.0f, 0.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});
     addTestQuad(scene, addTestMaterial(scene, "wall", glm::vec3(0.8f, 0.4f, 0.3f), specular, roughness),
                 {-1.0f, 0.0f, -1.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
-    Light spot;
-    spot.name = "spot";
-    spot.type = LightType::Spot;
-    spot.position = {0.6f, 1.6f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(-0.9f, -1.6f, 0.0f));
-    spot.intensity = 6.0f;
-    spot.innerConeAngle = 0.3f;
-    spot.outerConeAngle = 0.45f;
-    scene.lights.push_back(spot);
+    scene.lights.push_back(makeTestSpot("spot", {0.6f, 1.6f, 0.0f}, {-0.9f, -1.6f, 0.0f}, 6.0f, 0.3f, 0.45f));
     Camera camera;
     camera.name = "corner";
     camera.position = {2.0f, 1.3f, 2.0f};

@@ -17,6 +17,7 @@
 #include "gl_test_context.h"
 #include "measured.h"
 #include "shared_assets.h"
+#include "test_scenes.h"
 
 using namespace vplgi;
 
@@ -207,15 +208,7 @@ TEST_CASE("spot and directional lights and glossy surfaces match the CPU evaluat
     addBox({-5, -0.1f, -5}, {5, 0, 5}, material({0.6f, 0.6f, 0.6f}, 0.0f, 1.0f, 0.0f));
     addBox({-1.5f, 0, -1}, {-0.5f, 1.2f, 0}, material({0.9f, 0.6f, 0.3f}, 1.0f, 0.35f, 1.0f));
     addBox({0.5f, 0, -0.5f}, {1.3f, 0.6f, 0.3f}, material({0.2f, 0.4f, 0.8f}, 0.0f, 0.3f, 1.0f));
-    Light spot;
-    spot.name = "spot";
-    spot.type = LightType::Spot;
-    spot.position = {0.5f, 3.0f, 1.0f};
-    spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, -0.4f));
-    spot.intensity = 6.0f;
-    spot.innerConeAngle = 0.35f;
-    spot.outerConeAngle = 0.6f;
-    scene.lights.push_back(spot);
+    scene.lights.push_back(test::makeTestSpot("spot", {0.5f, 3.0f, 1.0f}, {-0.2f, -1.0f, -0.4f}, 6.0f, 0.35f, 0.6f));
     Light sun;
     sun.name = "sun";
     sun.type = LightType::Directional;

@@ -47,15 +47,7 @@ Scene blockedWallScene(bool blocker)
         test::addTestQuad(scene, grey, {1.5f, 0.0f, -3.0f}, {0.0f, 2.5f, 0.0f}, {0.0f, 0.0f, 6.0f}); // -x face
         test::addTestQuad(scene, grey, {1.5f, 0.0f, -3.0f}, {0.0f, 0.0f, 6.0f}, {0.0f, 2.5f, 0.0f}); // +x face
     }
-    Light spot;
-    spot.name = "spot";
-    spot.type = LightType::Spot;
-    spot.position = {-0.6f, 2.5f, 0.0f};
-    spot.direction = {0.0f, -1.0f, 0.0f};
-    spot.intensity = 20.0f;
-    spot.innerConeAngle = 0.4f;
-    spot.outerConeAngle = 0.5f;
-    scene.lights.push_back(spot);
+    scene.lights.push_back(test::makeTestSpot("spot", {-0.6f, 2.5f, 0.0f}, {0.0f, -1.0f, 0.0f}, 20.0f, 0.4f, 0.5f));
     Camera camera;
     camera.name = "wall";
     camera.position = {2.0f, 1.5f, 0.0f};
