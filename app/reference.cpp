@@ -12,8 +12,7 @@ namespace vplgi {
 
 std::string defaultReferenceCache()
 {
-    if (const char* env = std::getenv("VPLGI_CACHE_DIR"); env && *env) return env;
-    return "out/reference-cache";
+    return cacheDirectory("out/reference-cache");
 }
 
 PathTracerParams::Mode parseReferenceMode(const std::string& text)

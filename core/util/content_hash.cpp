@@ -1,6 +1,7 @@
 #include "core/util/content_hash.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 namespace vplgi {
 
@@ -18,6 +19,12 @@ std::string Hasher::hex() const
     char buffer[17];
     std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(mState));
     return buffer;
+}
+
+std::string cacheDirectory(const std::string& fallback)
+{
+    const char* dir = std::getenv("VPLGI_CACHE_DIR");
+    return dir && *dir ? std::string(dir) : fallback;
 }
 
 std::uint64_t hashSceneContent(const Scene& scene)

@@ -24,6 +24,10 @@ private:
 };
 
 std::uint64_t hashSceneContent(const Scene& scene);
+
+// Where content-keyed data (path-traced references, LightSkin's cache distributions) is kept between
+// runs: $VPLGI_CACHE_DIR when it is set and not empty, else `fallback`.
+std::string cacheDirectory(const std::string& fallback);
 void hashCamera(Hasher& hasher, const Camera& camera);
 // Everything about the lights that changes what they emit (type, placement, colour, intensity, cones).
 void hashLights(Hasher& hasher, const std::vector<Light>& lights);

@@ -1,8 +1,8 @@
 #include "lightskin_technique.h"
 
 #include <algorithm>
-#include <cstdlib>
 
+#include "core/util/content_hash.h"
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "glsl/shared/bindings.h"
@@ -13,14 +13,6 @@
 namespace vplgi {
 
 namespace {
-
-// Where the cache distribution is kept between runs: $VPLGI_CACHE_DIR, as for the path-traced
-// references, else out/cache (core/lightskin/light_caches.h adds its own subfolder).
-std::string cacheDirectory()
-{
-    const char* dir = std::getenv("VPLGI_CACHE_DIR");
-    return dir && *dir ? std::string(dir) : std::string("out/cache");
-}
 
 // The dispatch that runs one work-group of kLightSkinGroupSize invocations per cache: caches along
 // y, in rows of kLightSkinGroupRows (the GL minimum of work-groups per axis is 65535).
@@ -100,7 +92,8 @@ void LightSkinTechnique::setScene(const SceneContext& context)
 void LightSkinTechnique::uploadCaches()
 {
     if (!mCachesStale || !mScene) return;
-    mCaches = distributeLightCaches(*mScene, mParams.caches, mProgress, cacheDirectory());
+    // $VPLGI_CACHE_DIR or out/cache; core/lightskin/light_caches.h adds its own subfolder.
+    mCaches = distributeLightCaches(*mScene, mParams.caches, mProgress, cacheDirectory("out/cache"));
     mCachesStale = false;
     const auto count = static_cast<GLsizeiptr>(std::max<std::size_t>(mCaches.caches.size(), 1));
     static_assert(sizeof(LightCache) == sizeof(shared::GpuLightCache), "LightCache is uploaded as GpuLightCache");
