@@ -40,8 +40,8 @@ void writeTextFile(const std::string& path, const std::string& text)
     namespace fs = std::filesystem;
     const fs::path target(path);
     // A unique temporary sibling: two runs writing the same report never share one.
-    const fs::path temporary =
-        target.parent_path() / ("." + target.filename().string() + ".partial-" + std::to_string(std::random_device()()));
+    const fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".partial-" +
+                                                       std::to_string(std::random_device()()));
     std::error_code ec;
     bool ok = false;
     {
@@ -92,7 +92,8 @@ StagedDirectory::StagedDirectory(const std::string& target) : mName(target)
     }
     if (ec) {
         const std::string why = ec.message();
-        for (const fs::path& p : mCreated) fs::remove(p, ec);
+        for (const fs::path& p : mCreated)
+            fs::remove(p, ec);
         throw Error(target + ": cannot write in " + parent.string() + ": " + why);
     }
 }
@@ -102,7 +103,8 @@ StagedDirectory::~StagedDirectory()
     if (mCommitted) return;
     std::error_code ec;
     std::filesystem::remove_all(mStaging, ec);
-    for (const std::filesystem::path& p : mCreated) std::filesystem::remove(p, ec); // only while empty
+    for (const std::filesystem::path& p : mCreated)
+        std::filesystem::remove(p, ec); // only while empty
 }
 
 void StagedDirectory::commit()
@@ -119,8 +121,10 @@ void StagedDirectory::commit()
     for (auto it = fs::recursive_directory_iterator(mStaging, ec); !ec && it != fs::recursive_directory_iterator();
          it.increment(ec)) {
         const fs::path destination = mTarget / fs::relative(it->path(), mStaging);
-        if (it->is_directory()) fs::create_directories(destination, ec);
-        else fs::rename(it->path(), destination, ec);
+        if (it->is_directory())
+            fs::create_directories(destination, ec);
+        else
+            fs::rename(it->path(), destination, ec);
         require(!ec, mName + ": cannot move " + destination.string() + " into place: " + ec.message());
     }
     require(!ec, mName + ": cannot move the finished report into place: " + ec.message());

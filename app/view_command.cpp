@@ -441,7 +441,8 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
 void Viewer::dumpPanelParams(const std::string& path) const
 {
     std::string text;
-    for (const std::string& key : mPanel.keys()) text += key + "\n";
+    for (const std::string& key : mPanel.keys())
+        text += key + "\n";
     writeTextFile(path, text); // a temporary renamed into place: never half a list
 }
 

@@ -199,8 +199,7 @@ std::string uriOutsideFolderReason(const std::string& uri)
     if (path.empty()) return "is empty";
     const std::size_t colon = path.find(':');
     const std::size_t slash = path.find_first_of("/\\");
-    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
-        return "is not a relative path";
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash)) return "is not a relative path";
     if (path[0] == '/' || path[0] == '\\') return "is an absolute path";
     int depth = 0;
     std::size_t start = 0;
@@ -650,11 +649,13 @@ private:
                     readComponentAsFloat(view.element(i, c), view.componentType, view.normalized);
         // Refused rather than repaired: a NaN or Inf position or normal has no sensible
         // replacement, and one such value poisons bounds, BVHs, filters and every pixel it reaches.
-        for (std::size_t i = 0; i < out.size(); ++i)
-            if (!std::isfinite(out[i]))
-                fail(what, "accessor " + std::to_string(accessor) + ": element " +
-                               std::to_string(i / static_cast<std::size_t>(components)) + " is not finite (" +
-                               (std::isnan(out[i]) ? "nan" : out[i] > 0.0f ? "inf" : "-inf") + ")");
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            if (std::isfinite(out[i])) continue;
+            std::string value = "nan";
+            if (std::isinf(out[i])) value = out[i] > 0.0f ? "inf" : "-inf";
+            fail(what, "accessor " + std::to_string(accessor) + ": element " +
+                           std::to_string(i / static_cast<std::size_t>(components)) + " is not finite (" + value + ")");
+        }
         return out;
     }
 
@@ -1058,7 +1059,8 @@ Scene loadSource(const SceneFileReader& reader, const std::string& source)
         if (file.empty()) reader.fail("", "\"source\": empty glTF path");
         if (file.is_relative()) file = fs::path(reader.path()).parent_path() / file;
         std::error_code ec;
-        if (!fs::exists(file, ec)) reader.fail("", "\"source\": " + file.lexically_normal().string() + ": no such file");
+        if (!fs::exists(file, ec))
+            reader.fail("", "\"source\": " + file.lexically_normal().string() + ": no such file");
         return loadGltf(file.lexically_normal().string());
     }
     reader.fail("", "\"source\" must start with \"builtin:\" or \"gltf:\" (got \"" + source + "\")");
@@ -1377,11 +1379,13 @@ void warnIfEmpty(const Scene& scene)
         lit = lit || glm::any(glm::greaterThan(light.radiantIntensity(), glm::vec3(0.0f)));
     for (const Instance& instance : scene.instances) {
         const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
-        lit = lit || (mesh.triangleCount() > 0 && scene.materials[static_cast<std::size_t>(mesh.material)].isEmissive());
+        lit =
+            lit || (mesh.triangleCount() > 0 && scene.materials[static_cast<std::size_t>(mesh.material)].isEmissive());
     }
     const std::string name = scene.source.empty() ? scene.name : scene.source;
     if (scene.triangleCount() == 0) warn(name + ": the scene has no triangles");
-    if (!lit) warn(name + ": the scene has no lights (no light with intensity > 0, no emissive surface): it renders black");
+    if (!lit)
+        warn(name + ": the scene has no lights (no light with intensity > 0, no emissive surface): it renders black");
 }
 
 } // namespace

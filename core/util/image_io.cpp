@@ -133,7 +133,8 @@ void checkWritableDirectory(const std::string& path)
     std::error_code ec;
     require(fs::exists(directory, ec), path + ": directory " + directory.string() + " does not exist");
     require(fs::is_directory(directory, ec), path + ": " + directory.string() + " is not a directory");
-    const fs::path probe = temporarySibling(directory / (target.filename().empty() ? fs::path("probe") : target.filename()));
+    const fs::path probe =
+        temporarySibling(directory / (target.filename().empty() ? fs::path("probe") : target.filename()));
     std::FILE* stream = std::fopen(probe.c_str(), "wb");
     if (stream == nullptr) throw Error(path + ": cannot write in " + directory.string() + ": " + std::strerror(errno));
     std::fclose(stream);

@@ -22,9 +22,9 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/scene/scene_loader.h"
 #include "core/util/error.h"
 #include "core/util/warning.h"
-#include "core/scene/scene_loader.h"
 #include "shared_assets.h"
 
 #ifndef VPLGI_SOURCE_DIR
@@ -681,18 +681,25 @@ TEST_CASE("glTF: non-finite vertex data is refused naming the accessor", "[scene
         const char* message;
     };
     const std::vector<Case> cases = {
-        {"position-nan", {0, 0, 0, 1, nan, 0, 0, 1, 0}, {0, 0, 1, 0, 0, 1, 0, 0, 1},
+        {"position-nan",
+         {0, 0, 0, 1, nan, 0, 0, 1, 0},
+         {0, 0, 1, 0, 0, 1, 0, 0, 1},
          "mesh 0 primitive 0: POSITION: accessor 0: element 1 is not finite (nan)"},
-        {"position-inf", {0, 0, 0, 1, 0, 0, 0, -inf, 0}, {0, 0, 1, 0, 0, 1, 0, 0, 1},
+        {"position-inf",
+         {0, 0, 0, 1, 0, 0, 0, -inf, 0},
+         {0, 0, 1, 0, 0, 1, 0, 0, 1},
          "mesh 0 primitive 0: POSITION: accessor 0: element 2 is not finite (-inf)"},
-        {"normal-inf", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {inf, 0, 1, 0, 0, 1, 0, 0, 1},
+        {"normal-inf",
+         {0, 0, 0, 1, 0, 0, 0, 1, 0},
+         {inf, 0, 1, 0, 0, 1, 0, 0, 1},
          "mesh 0 primitive 0: NORMAL: accessor 1: element 0 is not finite (inf)"},
     };
     for (const Case& c : cases) {
         GltfBuilder b;
         const int positions = b.addData<float>(c.positions, kFloat, "VEC3", 3);
         const int normals = b.addData<float>(c.normals, kFloat, "VEC3", 3);
-        b.append("meshes", {{"primitives", json::array({{{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}}}})}});
+        b.append("meshes",
+                 {{"primitives", json::array({{{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}}}})}});
         b.append("nodes", {{"mesh", 0}});
         const std::string path = dir.file(std::string(c.name) + ".gltf");
         writeFile(path, b.gltfWithDataUri());
@@ -706,16 +713,17 @@ TEST_CASE("glTF: degenerate triangles are dropped with one warning that counts t
     // Vertices 0-2: a good triangle; 3-5: collinear; 6-8: a sliver of height 1e-7 on a 1 m edge
     // (below the 1e-6 relative threshold), 9-11: a thin but honest one of height 1e-4.
     GltfBuilder b;
-    const int positions = b.addData<float>({0, 0, 0, 1, 0, 0, 0, 1, 0,         //
-                                            0, 0, 1, 0.5f, 0, 1, 1, 0, 1,      //
-                                            0, 0, 2, 1, 0, 2, 0.5f, 1e-7f, 2,  //
-                                            0, 0, 3, 1, 0, 3, 0.5f, 1e-4f, 3},
+    const int positions = b.addData<float>({0, 0, 0, 1,    0, 0, 0,    1,     0, //
+                                            0, 0, 1, 0.5f, 0, 1, 1,    0,     1, //
+                                            0, 0, 2, 1,    0, 2, 0.5f, 1e-7f, 2, //
+                                            0, 0, 3, 1,    0, 3, 0.5f, 1e-4f, 3},
                                            kFloat, "VEC3", 3);
     // Triangles: good, repeated index, collinear, sliver, thin.
     const int indices = b.addData<std::uint16_t>({0, 1, 2, 0, 0, 1, 3, 4, 5, 6, 7, 8, 9, 10, 11}, kUShort, "SCALAR", 1);
     b.append("materials", {{"name", "glow"}, {"emissiveFactor", {1, 1, 1}}});
-    b.append("meshes", {{"name", "mixed"},
-                        {"primitives", json::array({{{"attributes", {{"POSITION", positions}}}, {"indices", indices}}})}});
+    b.append("meshes",
+             {{"name", "mixed"},
+              {"primitives", json::array({{{"attributes", {{"POSITION", positions}}}, {"indices", indices}}})}});
     // A second, emissive primitive with nothing but a zero-area triangle: left out of the scene.
     const int line = b.addData<float>({0, 2, 0, 1, 2, 0, 2, 2, 0}, kFloat, "VEC3", 3);
     b.append("meshes", {{"name", "lamp"},
@@ -758,7 +766,8 @@ TEST_CASE("glTF: external files outside the scene's folder are refused", "[scene
     };
     const std::string path = dir.file("scene/image.gltf");
     const std::string rule = " (refused: only data: URIs and files in the scene's folder are read)";
-    CHECK(withImage("../secret.png") == path + ": image 0: uri \"../secret.png\" points outside the scene's folder" + rule);
+    CHECK(withImage("../secret.png") ==
+          path + ": image 0: uri \"../secret.png\" points outside the scene's folder" + rule);
     CHECK(withImage("a/../../secret.png") ==
           path + ": image 0: uri \"a/../../secret.png\" points outside the scene's folder" + rule);
     CHECK(withImage("%2e%2E/secret.png") ==
@@ -972,8 +981,9 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
     CHECK(errorFor(R"({"source": "gltf:missing.glb"})") ==
           path + ": \"source\": " + dir.file("missing.glb") + ": no such file");
     // JSON has no NaN or Inf: a number too large for a double is how a file says "not finite".
-    CHECK(errorFor(R"({"source": "builtin:furnace", "lights": [{"name": "a", "type": "point", "intensity": 1e999}]})") ==
-          path + ": invalid JSON: number overflow parsing '1e999' (numbers must be finite)");
+    CHECK(
+        errorFor(R"({"source": "builtin:furnace", "lights": [{"name": "a", "type": "point", "intensity": 1e999}]})") ==
+        path + ": invalid JSON: number overflow parsing '1e999' (numbers must be finite)");
     CHECK(errorFor(R"({"source": "builtin:furnace", "animations": [{"name": "a", "light": "ghost", "keys": []}]})") ==
           path + ": animations[0]: no light named \"ghost\"");
     CHECK(errorFor(R"({"source": "builtin:furnace", "animations": [{"name": "a", "light": "center",
