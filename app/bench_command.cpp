@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "core/util/error.h"
+#include "core/util/image_io.h"
 #include "core/util/params.h"
 #include "core/trace/ray_scene.h"
 #include "gl/api/context.h"
@@ -281,6 +282,7 @@ int runBench(const std::vector<std::string>& args)
     const int warmup = parser.getInt("warmup", 0, 100000);
     const ImageSize size = imageSize(parser, 1, 16384);
     const Settings& settings = scene.settings;
+    if (parser.has("json")) checkWritableDirectory(parser.get("json")); // before the timing, not after it
 
     std::vector<std::string> names = {parser.get("technique")};
     if (parser.has("against")) names.push_back(parser.get("against"));

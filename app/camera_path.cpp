@@ -9,6 +9,7 @@
 
 #include "core/scene/builtin_scenes.h"
 #include "core/util/error.h"
+#include "report.h"
 
 namespace vplgi {
 
@@ -120,16 +121,7 @@ std::string CameraPathRecorder::sceneFileText(const std::string& sceneSpec, cons
 void CameraPathRecorder::write(const std::string& path, const std::string& sceneSpec,
                                const std::string& cameraName) const
 {
-    const std::string text = sceneFileText(sceneSpec, cameraName); // before touching the file
-    const std::string temporary = path + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary);
-        require(out.good(), path + ": cannot write");
-        out << text;
-        out.close();
-        require(out.good(), path + ": cannot write");
-    }
-    fs::rename(temporary, path);
+    writeTextFile(path, sceneFileText(sceneSpec, cameraName)); // a temporary renamed into place
 }
 
 } // namespace vplgi

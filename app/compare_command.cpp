@@ -71,6 +71,7 @@ struct CompareOptions {
     bool trackedIndirect = true;              // --tracked-choice indirect (else grid)
     int trackedReferenceSpp = 65536;          // --reference-spp
     std::string outDir;
+    std::string writeDir;                     // where files go while running (StagedDirectory of outDir)
     std::string cache;
     std::string against;                      // --against: a --techniques entry ("" = none)
 };
@@ -131,6 +132,9 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.reference.visitParams(referenceSetter);
     o.referenceKeys = referenceSetter.usedKeys();
     o.cache = parser.has("cache") ? parser.get("cache") : defaultReferenceCache();
+    std::error_code ec;
+    require(!std::filesystem::exists(o.cache, ec) || std::filesystem::is_directory(o.cache, ec),
+            "--cache " + o.cache + ": not a directory");
     if (parser.has("against")) {
         o.against = parser.get("against");
         require(std::count(o.techniques.begin(), o.techniques.end(), o.against) == 1,
@@ -255,10 +259,10 @@ void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const Imag
     for (glm::ivec2 p : tracked) values.push_back(luminanceAt(image, p));
     run.tracked.push_back(values);
     if (compareKeepsImages(frame, o.animation.frames)) {
-        writeImage(o.outDir + "/" + compareImageName(run.name, frame, ".png"), renderer.readDisplay());
-        writeImage(o.outDir + "/" + compareImageName(run.name, frame, ".exr"), image);
+        writeImage(o.writeDir + "/" + compareImageName(run.name, frame, ".png"), renderer.readDisplay());
+        writeImage(o.writeDir + "/" + compareImageName(run.name, frame, ".exr"), image);
         if (haveReference)
-            writeImage(o.outDir + "/" + compareImageName(run.name, frame, "-error.png"),
+            writeImage(o.writeDir + "/" + compareImageName(run.name, frame, "-error.png"),
                        errorHeatMap(image, reference, exposure, 0.25));
     }
 }
@@ -305,8 +309,8 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
         result.referenceTracked.push_back(trackedFirst);
         result.referenceCheckTracked.push_back(trackedSecond);
         if (o.reference.spp > 0 && compareKeepsImages(frame, o.animation.frames)) {
-            writeImage(o.outDir + "/" + compareImageName("reference", frame, ".exr"), reference);
-            writeImage(o.outDir + "/" + compareImageName("reference", frame, ".png"),
+            writeImage(o.writeDir + "/" + compareImageName("reference", frame, ".exr"), reference);
+            writeImage(o.writeDir + "/" + compareImageName("reference", frame, ".png"),
                        toneMapImage(reference, exposure));
         }
         for (TechniqueRun& run : runs) renderTechniqueFrame(o, run, reference, tracked, frame, exposure);
@@ -316,7 +320,7 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
             for (TechniqueRun& run : runs) {
                 run.againstErrors.push_back(compareImages(run.image, base.image, exposure));
                 if (&run != &base && compareKeepsImages(frame, o.animation.frames))
-                    writeImage(o.outDir + "/" + compareImageName(run.name, frame, "-difference.png"),
+                    writeImage(o.writeDir + "/" + compareImageName(run.name, frame, "-difference.png"),
                                errorHeatMap(run.image, base.image, exposure, 0.05));
             }
         }
@@ -434,7 +438,11 @@ int runCompare(const std::vector<std::string>& args)
         runs.push_back(std::move(run));
     }
 
-    std::filesystem::create_directories(o.outDir + "/images");
+    // Everything is written under a temporary name and moved into place at the end: a failure
+    // part-way leaves no half report.
+    StagedDirectory staged(o.outDir);
+    o.writeDir = staged.path();
+    std::filesystem::create_directories(o.writeDir + "/images");
     context = gl::createHeadlessContext();
     for (TechniqueRun& run : runs) run.session->createRenderer();
     // What the reference must simulate to be comparable (SMCIR: untextured bounces, the same clamp).
@@ -446,7 +454,8 @@ int runCompare(const std::vector<std::string>& args)
     const FrameLoopResult loop = renderFrames(o, runs, tracked.pixels, exposure);
 
     const CompareReport report = makeReport(o, lead.scene(), runs, loop, tracked, exposure);
-    writeCompareReport(o.outDir, report);
+    writeCompareReport(o.writeDir, report);
+    staged.commit();
     std::printf("%s", compareTemporalSummary(report).c_str());
     std::printf("%s/index.html\n", o.outDir.c_str());
     return 0;

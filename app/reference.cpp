@@ -81,13 +81,20 @@ void writePixelCache(const std::string& path, const std::vector<glm::vec3>& valu
 {
     // A temporary sibling renamed into place: a cache never holds a half file.
     const std::string temporary = path + ".partial";
+    bool ok = false;
     {
         std::ofstream out(temporary);
         out << std::hexfloat;
         for (const glm::vec3& v : values) out << v.r << " " << v.g << " " << v.b << "\n";
-        require(out.good(), temporary + ": write failed");
+        out.close();
+        ok = !out.fail();
     }
-    std::filesystem::rename(temporary, path);
+    std::error_code ec;
+    if (ok) std::filesystem::rename(temporary, path, ec);
+    if (!ok || ec) {
+        std::filesystem::remove(temporary, ec);
+        throw Error(path + ": write failed");
+    }
 }
 
 } // namespace

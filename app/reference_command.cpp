@@ -5,6 +5,7 @@
 #include "cli.h"
 #include "commands.h"
 #include "core/util/error.h"
+#include "core/util/image_io.h"
 #include "core/util/params.h"
 #include "core/scene/scene_loader.h"
 #include "reference.h"
@@ -34,8 +35,16 @@ int runReference(const std::vector<std::string>& args)
     const std::string out = parser.get("out");
     require(isFloatImagePath(out), out + ": the reference is linear radiance: write an .exr");
     std::filesystem::path outDir = std::filesystem::path(out).parent_path();
-    if (parser.has("out") && !outDir.empty())
-        require(std::filesystem::is_directory(outDir), out + ": directory " + outDir.string() + " does not exist");
+    // The directory must exist (the default's is created) and take a file: checked before the path
+    // tracing, not after it.
+    if (parser.has("out") || outDir.empty() || std::filesystem::is_directory(outDir))
+        checkWritableDirectory(out);
+    if (parser.has("cache") && !parser.has("no-cache")) {
+        std::error_code ec;
+        const std::string cache = parser.get("cache");
+        require(!std::filesystem::exists(cache, ec) || std::filesystem::is_directory(cache, ec),
+                "--cache " + cache + ": not a directory");
+    }
 
     PathTracerParams params;
     params.mode = parseReferenceMode(parser.get("mode"));

@@ -87,8 +87,10 @@ int runRender(const std::vector<std::string>& args)
     const bool sequence = isSequencePattern(out);
     const bool defaultOut = !parser.has("out");
     std::filesystem::path outDir = std::filesystem::path(out).parent_path();
-    if (!defaultOut && !outDir.empty())
-        require(std::filesystem::is_directory(outDir), out + ": directory " + outDir.string() + " does not exist");
+    // The directory must exist (the default's is created) and take a file: checked before the
+    // render, not after it.
+    if (!defaultOut || outDir.empty() || std::filesystem::is_directory(outDir))
+        checkWritableDirectory(sequence ? framePath(out, 0) : out);
     std::unique_ptr<gl::Context> context; // declared first: destroyed after the session's GL objects
     Session session(sessionOptions(parser));
     const bool quiet = parser.has("quiet");

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "core/util/error.h"
@@ -37,15 +38,98 @@ std::string formatNumber(double value, int significant)
 void writeTextFile(const std::string& path, const std::string& text)
 {
     namespace fs = std::filesystem;
-    fs::path target(path);
-    fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".partial");
+    const fs::path target(path);
+    // A unique temporary sibling: two runs writing the same report never share one.
+    const fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".partial-" +
+                                                       std::to_string(std::random_device()()));
+    std::error_code ec;
+    bool ok = false;
     {
         std::ofstream out(temporary, std::ios::binary);
-        require(out.good(), path + ": cannot write");
-        out << text;
-        require(out.good(), path + ": write failed");
+        if (out.good()) {
+            out << text;
+            out.close(); // flushes: a full disk or a file size limit shows here
+            ok = !out.fail();
+        }
     }
-    fs::rename(temporary, target);
+    if (!ok) {
+        fs::remove(temporary, ec);
+        throw Error(path + ": cannot write");
+    }
+    fs::rename(temporary, target, ec);
+    if (ec) {
+        fs::remove(temporary, ec);
+        throw Error(path + ": cannot rename the finished file into place");
+    }
+}
+
+StagedDirectory::StagedDirectory(const std::string& target) : mName(target)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    mTarget = fs::path(target).lexically_normal();
+    if (mTarget.filename().empty()) mTarget = mTarget.parent_path(); // "dir/"
+    // ".", ".." and "/": the staging sibling needs a parent and a name.
+    if (mTarget.filename() == "." || mTarget.filename() == ".." || !mTarget.has_parent_path())
+        mTarget = fs::absolute(mTarget, ec).lexically_normal();
+    if (mTarget.filename().empty()) mTarget = mTarget.parent_path();
+    require(!ec && !mTarget.filename().empty() && mTarget.has_parent_path() && mTarget != mTarget.root_path(),
+            target + ": not a usable output directory");
+    require(!fs::exists(mTarget, ec) || fs::is_directory(mTarget, ec), target + ": exists and is not a directory");
+    // The parents that do not exist yet; an existing one must be a directory.
+    fs::path parent = mTarget.parent_path();
+    for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        mCreated.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    fs::path existing = mCreated.empty() ? parent : mCreated.back().parent_path();
+    if (existing.empty()) existing = ".";
+    require(fs::is_directory(existing, ec), target + ": " + existing.string() + " is not a directory");
+    fs::create_directories(parent, ec);
+    if (!ec) {
+        mStaging = parent / ("." + mTarget.filename().string() + ".partial-" + std::to_string(std::random_device()()));
+        fs::create_directory(mStaging, ec);
+    }
+    if (ec) {
+        const std::string why = ec.message();
+        for (const fs::path& p : mCreated)
+            fs::remove(p, ec);
+        throw Error(target + ": cannot write in " + parent.string() + ": " + why);
+    }
+}
+
+StagedDirectory::~StagedDirectory()
+{
+    if (mCommitted) return;
+    std::error_code ec;
+    std::filesystem::remove_all(mStaging, ec);
+    for (const std::filesystem::path& p : mCreated)
+        std::filesystem::remove(p, ec); // only while empty
+}
+
+void StagedDirectory::commit()
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(mTarget, ec)) {
+        fs::rename(mStaging, mTarget, ec);
+        require(!ec, mName + ": cannot move the finished report into place: " + ec.message());
+        mCommitted = true;
+        return;
+    }
+    // An earlier report is there: its files are replaced one by one (each rename is atomic).
+    for (auto it = fs::recursive_directory_iterator(mStaging, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
+        const fs::path destination = mTarget / fs::relative(it->path(), mStaging);
+        if (it->is_directory())
+            fs::create_directories(destination, ec);
+        else
+            fs::rename(it->path(), destination, ec);
+        require(!ec, mName + ": cannot move " + destination.string() + " into place: " + ec.message());
+    }
+    require(!ec, mName + ": cannot move the finished report into place: " + ec.message());
+    fs::remove_all(mStaging, ec);
+    mCommitted = true;
 }
 
 std::string svgLinePlot(const std::string& title, const std::string& xLabel, const std::string& yLabel,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,27 @@ std::string svgLinePlot(const std::string& title, const std::string& xLabel, con
 
 // Writes text to a temporary sibling and renames it into place (never a half file).
 void writeTextFile(const std::string& path, const std::string& text);
+
+// A report directory built under a temporary sibling name (".<name>.partial-N") and moved into
+// place by commit(): a run that fails part-way (bad input found late, a full disk, a file size
+// limit) leaves no half report. Parent directories created for it are removed again when it is not
+// committed. Committing into an existing directory replaces the files of the same names.
+class StagedDirectory {
+public:
+    explicit StagedDirectory(const std::string& target); // throws Error naming target
+    ~StagedDirectory();
+    StagedDirectory(const StagedDirectory&) = delete;
+    StagedDirectory& operator=(const StagedDirectory&) = delete;
+
+    std::string path() const { return mStaging.string(); } // write everything here
+    void commit();
+
+private:
+    std::string mName;                       // as given, for messages
+    std::filesystem::path mTarget, mStaging;
+    std::vector<std::filesystem::path> mCreated; // parents created for it, deepest first
+    bool mCommitted = false;
+};
 
 std::string htmlEscape(const std::string& text);
 std::string formatNumber(double value, int significant = 4);

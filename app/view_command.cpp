@@ -31,6 +31,7 @@
 #include "gl/api/objects.h"
 #include "gl/api/window.h"
 #include "param_panel.h"
+#include "report.h"
 #include "session.h"
 #include "view_script.h"
 
@@ -439,12 +440,10 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
 
 void Viewer::dumpPanelParams(const std::string& path) const
 {
-    std::ofstream out(path);
-    require(out.good(), path + ": cannot write");
+    std::string text;
     for (const std::string& key : mPanel.keys())
-        out << key << "\n";
-    out.close();
-    require(out.good(), path + ": cannot write");
+        text += key + "\n";
+    writeTextFile(path, text); // a temporary renamed into place: never half a list
 }
 
 void Viewer::run()

@@ -20,6 +20,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
@@ -27,6 +28,7 @@
 
 #include "core/scene/builtin_scenes.h"
 #include "core/util/error.h"
+#include "core/util/warning.h"
 
 namespace vplgi {
 
@@ -123,6 +125,16 @@ std::string uniqueName(const std::string& preferred, const std::string& fallback
     throw Error(where + ":" + std::to_string(line) + ":" + std::to_string(column) + ": invalid JSON: " + why);
 }
 
+// nlohmann's other parse-time failure: a number too large for a double ("1e999"), which is how a
+// JSON file spells a non-finite value (JSON has no NaN or Inf).
+[[noreturn]] void throwJsonValueError(const std::string& where, const nlohmann::json::exception& e)
+{
+    std::string why = e.what();
+    const std::size_t bracket = why.find("] ");
+    if (bracket != std::string::npos) why = why.substr(bracket + 2);
+    throw Error(where + ": invalid JSON: " + why + " (numbers must be finite)");
+}
+
 // ---------------------------------------------------------------------------------------------
 // glTF
 // ---------------------------------------------------------------------------------------------
@@ -143,7 +155,7 @@ std::string gltfJsonText(const std::string& path, bool binary)
 {
     if (!binary) return readWholeFile(path);
     // Anything that is not a well-formed GLB header yields "", which parses as invalid JSON; let
-    // tinygltf describe those files instead (see checkRequiredExtensions).
+    // tinygltf describe those files instead (see checkGltfDocument).
     std::ifstream in(path, std::ios::binary);
     unsigned char header[20] = {};
     if (!in.read(reinterpret_cast<char*>(header), sizeof(header))) return "";
@@ -159,9 +171,56 @@ std::string gltfJsonText(const std::string& path, bool binary)
     return text;
 }
 
-// Looked up before tinygltf runs: an unsupported required extension often also makes tinygltf fail
-// (KHR_texture_basisu images cannot be decoded), and its name is the message the user needs.
-void checkRequiredExtensions(const std::string& path, bool binary)
+// "%2E%2E" -> "..": glTF URIs are percent-encoded (RFC 3986); checked in decoded form so that an
+// encoded ".." cannot slip past the folder rule below.
+std::string percentDecoded(const std::string& uri)
+{
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// Why an external (non-data:) URI is refused, or "" when it names a file inside the glTF's folder.
+// A scene file must not read files elsewhere on the machine (a downloaded asset naming
+// "../../home/user/.ssh/id_rsa" as a texture): absolute paths, other URI schemes and ".." steps
+// that leave the folder are refused, before tinygltf opens anything. Lexical: a symbolic link inside
+// the folder is the folder owner's choice.
+std::string uriOutsideFolderReason(const std::string& uri)
+{
+    const std::string path = percentDecoded(uri);
+    if (path.empty()) return "is empty";
+    const std::size_t colon = path.find(':');
+    const std::size_t slash = path.find_first_of("/\\");
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash)) return "is not a relative path";
+    if (path[0] == '/' || path[0] == '\\') return "is an absolute path";
+    int depth = 0;
+    std::size_t start = 0;
+    while (start <= path.size()) {
+        std::size_t end = path.find_first_of("/\\", start);
+        if (end == std::string::npos) end = path.size();
+        const std::string part = path.substr(start, end - start);
+        if (part == "..") {
+            if (--depth < 0) return "points outside the scene's folder";
+        } else if (!part.empty() && part != ".") {
+            ++depth;
+        }
+        start = end + 1;
+    }
+    return "";
+}
+
+// Checks on the raw JSON, before tinygltf runs: an unsupported required extension often also makes
+// tinygltf fail (KHR_texture_basisu images cannot be decoded), and its name is the message the user
+// needs; external files outside the scene's folder must be refused before tinygltf opens them.
+void checkGltfDocument(const std::string& path, bool binary)
 {
     const std::string text = gltfJsonText(path, binary);
     if (binary && text.empty()) return;
@@ -171,13 +230,32 @@ void checkRequiredExtensions(const std::string& path, bool binary)
     } catch (const nlohmann::json::parse_error& e) {
         // Reported like a scene file; in a .glb the position is within the JSON chunk.
         throwJsonParseError(binary ? path + ": JSON chunk" : path, text, e);
+    } catch (const nlohmann::json::exception& e) {
+        throwJsonValueError(path, e);
     }
     if (!doc.is_object()) return;
     auto it = doc.find("extensionsRequired");
-    if (it == doc.end() || !it->is_array()) return;
-    for (const nlohmann::json& ext : *it)
-        if (ext.is_string() && supportedRequiredExtensions().count(ext.get<std::string>()) == 0)
-            throw Error(path + ": unsupported required extension " + ext.get<std::string>());
+    if (it != doc.end() && it->is_array())
+        for (const nlohmann::json& ext : *it)
+            if (ext.is_string() && supportedRequiredExtensions().count(ext.get<std::string>()) == 0)
+                throw Error(path + ": unsupported required extension " + ext.get<std::string>());
+    // glTF arrays and the singular that names one element in messages.
+    for (const auto& [array, element] : {std::pair{"buffers", "buffer"}, std::pair{"images", "image"}}) {
+        auto list = doc.find(array);
+        if (list == doc.end() || !list->is_array()) continue;
+        for (std::size_t i = 0; i < list->size(); ++i) {
+            const nlohmann::json& item = (*list)[i];
+            if (!item.is_object()) continue;
+            auto uri = item.find("uri");
+            if (uri == item.end() || !uri->is_string()) continue;
+            const std::string uriText = uri->get<std::string>();
+            if (uriText.rfind("data:", 0) == 0) continue;
+            const std::string reason = uriOutsideFolderReason(uriText);
+            if (!reason.empty())
+                throw Error(path + ": " + element + " " + std::to_string(i) + ": uri \"" + uriText + "\" " + reason +
+                            " (refused: only data: URIs and files in the scene's folder are read)");
+        }
+    }
 }
 
 // A typed window onto an accessor's elements, bounds-checked against its buffer.
@@ -268,6 +346,36 @@ const char* modeName(int mode)
     }
 }
 
+// True when a triangle has (numerically) no area: two equal corners, collinear corners, or a height
+// below 1e-6 of its longest edge. Below that the float cross product is mostly rounding error (a
+// few 1e-7 relative), so the triangle's normal is noise, and its area is zero for anything that
+// samples emitters by area (a density of 1/area).
+bool isDegenerateTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
+{
+    const glm::vec3 ab = b - a, ac = c - a, bc = c - b;
+    const float longestSquared = std::max({glm::dot(ab, ab), glm::dot(ac, ac), glm::dot(bc, bc)});
+    const float twiceArea = glm::length(glm::cross(ab, ac)); // = longest edge * height
+    return !(twiceArea > 1e-6f * longestSquared);
+}
+
+// Removes mesh.indices' degenerate triangles (vertices stay); returns how many.
+std::size_t dropDegenerateTriangles(Mesh& mesh)
+{
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t i0 = mesh.indices[t], i1 = mesh.indices[t + 1], i2 = mesh.indices[t + 2];
+        if (i0 == i1 || i1 == i2 || i0 == i2 ||
+            isDegenerateTriangle(mesh.vertices[i0].position, mesh.vertices[i1].position, mesh.vertices[i2].position))
+            continue;
+        mesh.indices[kept++] = i0;
+        mesh.indices[kept++] = i1;
+        mesh.indices[kept++] = i2;
+    }
+    const std::size_t dropped = (mesh.indices.size() - kept) / 3;
+    mesh.indices.resize(kept);
+    return dropped;
+}
+
 class GltfImporter {
 public:
     GltfImporter(const tinygltf::Model& model, const std::string& path, Scene& scene)
@@ -285,12 +393,28 @@ public:
         mVisiting.assign(mModel.nodes.size(), false);
         for (int root : rootNodes())
             visitNode(root, glm::mat4(1.0f));
+        warnAboutDroppedTriangles();
     }
 
 private:
     [[noreturn]] void fail(const std::string& what, const std::string& message) const
     {
         throw Error(mPath + ": " + what + ": " + message);
+    }
+
+    // One line per file however many primitives lost triangles: real-world assets can have
+    // thousands of them, and the count is what the user needs.
+    void warnAboutDroppedTriangles() const
+    {
+        if (mDroppedTriangles == 0) return;
+        const auto plural = [](std::size_t n, const char* word) {
+            return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+        };
+        std::string message = mPath + ": dropped " + plural(mDroppedTriangles, "degenerate (zero-area) triangle") +
+                              " in " + plural(mDroppedPrimitives, "primitive") + ", first in " + mFirstDropped;
+        if (mDroppedEmissive > 0) message += "; " + std::to_string(mDroppedEmissive) + " of them emissive";
+        if (mEmptiedPrimitives > 0) message += "; " + plural(mEmptiedPrimitives, "primitive") + " left empty";
+        warn(message);
     }
 
     static std::string label(const char* kind, std::size_t index, const std::string& name)
@@ -523,6 +647,15 @@ private:
             for (int c = 0; c < components; ++c)
                 out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
                     readComponentAsFloat(view.element(i, c), view.componentType, view.normalized);
+        // Refused rather than repaired: a NaN or Inf position or normal has no sensible
+        // replacement, and one such value poisons bounds, BVHs, filters and every pixel it reaches.
+        for (std::size_t i = 0; i < out.size(); ++i) {
+            if (std::isfinite(out[i])) continue;
+            std::string value = "nan";
+            if (std::isinf(out[i])) value = out[i] > 0.0f ? "inf" : "-inf";
+            fail(what, "accessor " + std::to_string(accessor) + ": element " +
+                           std::to_string(i / static_cast<std::size_t>(components)) + " is not finite (" + value + ")");
+        }
         return out;
     }
 
@@ -623,6 +756,19 @@ private:
             }
         }
 
+        // Degenerate triangles are dropped (counted, and warned about once per file in run()); strips
+        // and fans use repeated indices on purpose to join runs, so theirs are dropped silently.
+        const bool emissive = prim.material >= 0 && static_cast<std::size_t>(prim.material) < mScene.materials.size() &&
+                              mScene.materials[static_cast<std::size_t>(prim.material)].isEmissive();
+        const std::size_t dropped = dropDegenerateTriangles(mesh);
+        if (dropped > 0 && mode == TINYGLTF_MODE_TRIANGLES) {
+            if (mDroppedTriangles == 0) mFirstDropped = what;
+            mDroppedTriangles += dropped;
+            if (emissive) mDroppedEmissive += dropped;
+            ++mDroppedPrimitives;
+            if (mesh.indices.empty()) ++mEmptiedPrimitives;
+        }
+
         if (!hasNormals) {
             // The spec asks for flat normals when NORMAL is missing: give every triangle its own
             // vertices so generateNormals' averaging stays within one face.
@@ -658,7 +804,9 @@ private:
         std::vector<int> indices;
         const std::size_t m = static_cast<std::size_t>(meshIndex);
         for (std::size_t p = 0; p < mModel.meshes[m].primitives.size(); ++p) {
-            mScene.meshes.push_back(convertPrimitive(m, p));
+            Mesh mesh = convertPrimitive(m, p);
+            if (mesh.indices.empty()) continue; // nothing to draw (all degenerate: warned in run())
+            mScene.meshes.push_back(std::move(mesh));
             indices.push_back(static_cast<int>(mScene.meshes.size()) - 1);
         }
         return mMeshCache.emplace(meshIndex, std::move(indices)).first->second;
@@ -804,6 +952,11 @@ private:
     std::vector<bool> mVisiting;
     std::size_t mVisitCount = 0;
     int mDefaultMaterial = -1;
+    std::size_t mDroppedTriangles = 0;  // degenerate triangles of TRIANGLES primitives
+    std::size_t mDroppedEmissive = 0;   // of those, with an emissive material
+    std::size_t mDroppedPrimitives = 0; // primitives that lost at least one
+    std::size_t mEmptiedPrimitives = 0; // primitives that lost all of them (not added to the scene)
+    std::string mFirstDropped;          // "mesh 0 (name) primitive 0" of the first
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -905,6 +1058,9 @@ Scene loadSource(const SceneFileReader& reader, const std::string& source)
         fs::path file = source.substr(gltfPrefix.size());
         if (file.empty()) reader.fail("", "\"source\": empty glTF path");
         if (file.is_relative()) file = fs::path(reader.path()).parent_path() / file;
+        std::error_code ec;
+        if (!fs::exists(file, ec))
+            reader.fail("", "\"source\": " + file.lexically_normal().string() + ": no such file");
         return loadGltf(file.lexically_normal().string());
     }
     reader.fail("", "\"source\" must start with \"builtin:\" or \"gltf:\" (got \"" + source + "\")");
@@ -1089,7 +1245,7 @@ Scene loadGltf(const std::string& path)
     const std::string ext = lowerExtension(path);
     const bool binary = ext == ".glb";
     require(binary || ext == ".gltf", path + ": not a .gltf or .glb file");
-    checkRequiredExtensions(path, binary);
+    checkGltfDocument(path, binary);
 
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
@@ -1141,6 +1297,8 @@ SceneDescription loadSceneFile(const std::string& path)
         doc = Json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         throwJsonParseError(path, text, e);
+    } catch (const nlohmann::json::exception& e) {
+        throwJsonValueError(path, e);
     }
 
     SceneFileReader r(path);
@@ -1209,6 +1367,29 @@ SceneDescription loadSceneFile(const std::string& path)
     return description;
 }
 
+namespace {
+
+// A scene without light renders black, and one without triangles shows only the background: both
+// are allowed (a scene being assembled, a check of cameras or geometry) but said, once, because an
+// all-black image with exit status 0 looks like a renderer bug.
+void warnIfEmpty(const Scene& scene)
+{
+    bool lit = false;
+    for (const Light& light : scene.lights)
+        lit = lit || glm::any(glm::greaterThan(light.radiantIntensity(), glm::vec3(0.0f)));
+    for (const Instance& instance : scene.instances) {
+        const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
+        lit =
+            lit || (mesh.triangleCount() > 0 && scene.materials[static_cast<std::size_t>(mesh.material)].isEmissive());
+    }
+    const std::string name = scene.source.empty() ? scene.name : scene.source;
+    if (scene.triangleCount() == 0) warn(name + ": the scene has no triangles");
+    if (!lit)
+        warn(name + ": the scene has no lights (no light with intensity > 0, no emissive surface): it renders black");
+}
+
+} // namespace
+
 SceneDescription loadSceneSpec(const std::string& spec)
 {
     SceneDescription description;
@@ -1223,12 +1404,14 @@ SceneDescription loadSceneSpec(const std::string& spec)
         throw Error("unknown scene \"" + spec + "\" (built-in scenes: " + joinNames(builtinSceneNames()) +
                     "; or a .json/.gltf/.glb path)");
     require(exists, spec + ": no such file");
-    if (ext == ".json") return loadSceneFile(spec);
-    if (ext == ".gltf" || ext == ".glb") {
+    if (ext == ".json")
+        description = loadSceneFile(spec);
+    else if (ext == ".gltf" || ext == ".glb")
         description.scene = loadGltf(spec);
-        return description;
-    }
-    throw Error(spec + ": not a scene (expected a built-in name or a .json, .gltf or .glb file)");
+    else
+        throw Error(spec + ": not a scene (expected a built-in name or a .json, .gltf or .glb file)");
+    warnIfEmpty(description.scene);
+    return description;
 }
 
 } // namespace vplgi

@@ -126,6 +126,21 @@ void checkOutputPath(const std::string& path)
     require(ext == ".png" || ext == ".exr", path + ": output must end in .png or .exr");
 }
 
+void checkWritableDirectory(const std::string& path)
+{
+    const fs::path target(path);
+    const fs::path directory = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::error_code ec;
+    require(fs::exists(directory, ec), path + ": directory " + directory.string() + " does not exist");
+    require(fs::is_directory(directory, ec), path + ": " + directory.string() + " is not a directory");
+    const fs::path probe =
+        temporarySibling(directory / (target.filename().empty() ? fs::path("probe") : target.filename()));
+    std::FILE* stream = std::fopen(probe.c_str(), "wb");
+    if (stream == nullptr) throw Error(path + ": cannot write in " + directory.string() + ": " + std::strerror(errno));
+    std::fclose(stream);
+    fs::remove(probe, ec);
+}
+
 void writeImage(const std::string& path, const ImageRGBA8& image)
 {
     require(!isFloatImagePath(path), path + ": an 8-bit image cannot be written as a float format");

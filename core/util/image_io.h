@@ -34,5 +34,9 @@ ImageRGBA8 readImage8(const std::string& path);
 bool isFloatImagePath(const std::string& path);
 // Throws Error unless the extension is one vplgi writes (png, exr).
 void checkOutputPath(const std::string& path);
+// Throws Error unless a file can be created next to `path` (in its directory, which must exist):
+// commands call it before their work, so that an unwritable output fails in a second, not after a
+// long render. Creates and removes a temporary file there.
+void checkWritableDirectory(const std::string& path);
 
 } // namespace vplgi

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -21,8 +22,9 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/util/error.h"
 #include "core/scene/scene_loader.h"
+#include "core/util/error.h"
+#include "core/util/warning.h"
 #include "shared_assets.h"
 
 #ifndef VPLGI_SOURCE_DIR
@@ -668,6 +670,173 @@ TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_l
     }
 }
 
+TEST_CASE("glTF: non-finite vertex data is refused naming the accessor", "[scene_loader]")
+{
+    TempDir dir;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    struct Case {
+        const char* name;
+        std::vector<float> positions, normals;
+        const char* message;
+    };
+    const std::vector<Case> cases = {
+        {"position-nan",
+         {0, 0, 0, 1, nan, 0, 0, 1, 0},
+         {0, 0, 1, 0, 0, 1, 0, 0, 1},
+         "mesh 0 primitive 0: POSITION: accessor 0: element 1 is not finite (nan)"},
+        {"position-inf",
+         {0, 0, 0, 1, 0, 0, 0, -inf, 0},
+         {0, 0, 1, 0, 0, 1, 0, 0, 1},
+         "mesh 0 primitive 0: POSITION: accessor 0: element 2 is not finite (-inf)"},
+        {"normal-inf",
+         {0, 0, 0, 1, 0, 0, 0, 1, 0},
+         {inf, 0, 1, 0, 0, 1, 0, 0, 1},
+         "mesh 0 primitive 0: NORMAL: accessor 1: element 0 is not finite (inf)"},
+    };
+    for (const Case& c : cases) {
+        GltfBuilder b;
+        const int positions = b.addData<float>(c.positions, kFloat, "VEC3", 3);
+        const int normals = b.addData<float>(c.normals, kFloat, "VEC3", 3);
+        b.append("meshes",
+                 {{"primitives", json::array({{{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}}}})}});
+        b.append("nodes", {{"mesh", 0}});
+        const std::string path = dir.file(std::string(c.name) + ".gltf");
+        writeFile(path, b.gltfWithDataUri());
+        CHECK(errorOf([&] { vplgi::loadGltf(path); }) == path + ": " + c.message);
+    }
+}
+
+TEST_CASE("glTF: degenerate triangles are dropped with one warning that counts them", "[scene_loader]")
+{
+    TempDir dir;
+    // Vertices 0-2: a good triangle; 3-5: collinear; 6-8: a sliver of height 1e-7 on a 1 m edge
+    // (below the 1e-6 relative threshold), 9-11: a thin but honest one of height 1e-4.
+    GltfBuilder b;
+    const int positions = b.addData<float>({0, 0, 0, 1,    0, 0, 0,    1,     0, //
+                                            0, 0, 1, 0.5f, 0, 1, 1,    0,     1, //
+                                            0, 0, 2, 1,    0, 2, 0.5f, 1e-7f, 2, //
+                                            0, 0, 3, 1,    0, 3, 0.5f, 1e-4f, 3},
+                                           kFloat, "VEC3", 3);
+    // Triangles: good, repeated index, collinear, sliver, thin.
+    const int indices = b.addData<std::uint16_t>({0, 1, 2, 0, 0, 1, 3, 4, 5, 6, 7, 8, 9, 10, 11}, kUShort, "SCALAR", 1);
+    b.append("materials", {{"name", "glow"}, {"emissiveFactor", {1, 1, 1}}});
+    b.append("meshes",
+             {{"name", "mixed"},
+              {"primitives", json::array({{{"attributes", {{"POSITION", positions}}}, {"indices", indices}}})}});
+    // A second, emissive primitive with nothing but a zero-area triangle: left out of the scene.
+    const int line = b.addData<float>({0, 2, 0, 1, 2, 0, 2, 2, 0}, kFloat, "VEC3", 3);
+    b.append("meshes", {{"name", "lamp"},
+                        {"primitives", json::array({{{"attributes", {{"POSITION", line}}}, {"material", 0}}})}});
+    b.append("nodes", {{"mesh", 0}});
+    b.append("nodes", {{"mesh", 1}});
+    const std::string path = dir.file("degenerate.gltf");
+    writeFile(path, b.gltfWithDataUri());
+
+    vplgi::WarningCapture warnings;
+    const vplgi::Scene scene = vplgi::loadGltf(path);
+    REQUIRE(scene.meshes.size() == 1); // the emissive line is gone
+    // The good and the thin triangle stay (re-indexed: without NORMAL every triangle gets its own
+    // vertices for flat normals).
+    const vplgi::Mesh& mesh = scene.meshes[0];
+    REQUIRE(mesh.indices.size() == 6);
+    CHECK(mesh.vertices[mesh.indices[2]].position == glm::vec3(0, 1, 0));
+    CHECK(mesh.vertices[mesh.indices[5]].position == glm::vec3(0.5f, 1e-4f, 3));
+    CHECK(scene.instances.size() == 1);
+    REQUIRE(warnings.messages().size() == 1);
+    CHECK(warnings.messages()[0] == path + ": dropped 4 degenerate (zero-area) triangles in 2 primitives, first in "
+                                           "mesh 0 (mixed) primitive 0; 1 of them emissive; 1 primitive left empty");
+    CHECK_NOTHROW(scene.validate());
+}
+
+TEST_CASE("glTF: external files outside the scene's folder are refused", "[scene_loader]")
+{
+    TempDir dir;
+    writeFile(dir.file("secret.png"), twoPixelBmp()); // exists: only the folder rule can refuse it
+    writeFile(dir.file("scene/inside.bmp"), twoPixelBmp());
+    fs::create_directories(dir.file("scene/sub")); // "sub/.." resolves only through an existing folder
+    const auto withImage = [&](const std::string& uri) {
+        GltfBuilder b;
+        addTriangleMesh(b);
+        b.append("nodes", {{"mesh", 0}});
+        b.append("images", {{"uri", uri}});
+        const std::string path = dir.file("scene/image.gltf");
+        writeFile(path, b.gltfWithDataUri());
+        return errorOf([&] { vplgi::loadGltf(path); });
+    };
+    const std::string path = dir.file("scene/image.gltf");
+    const std::string rule = " (refused: only data: URIs and files in the scene's folder are read)";
+    CHECK(withImage("../secret.png") ==
+          path + ": image 0: uri \"../secret.png\" points outside the scene's folder" + rule);
+    CHECK(withImage("a/../../secret.png") ==
+          path + ": image 0: uri \"a/../../secret.png\" points outside the scene's folder" + rule);
+    CHECK(withImage("%2e%2E/secret.png") ==
+          path + ": image 0: uri \"%2e%2E/secret.png\" points outside the scene's folder" + rule);
+    CHECK(withImage("..\\secret.png") ==
+          path + ": image 0: uri \"..\\secret.png\" points outside the scene's folder" + rule);
+    CHECK(withImage(dir.file("secret.png")) ==
+          path + ": image 0: uri \"" + dir.file("secret.png") + "\" is an absolute path" + rule);
+    CHECK(withImage("file:///etc/hostname") ==
+          path + ": image 0: uri \"file:///etc/hostname\" is not a relative path" + rule);
+    // Inside the folder, ".." that stays inside included: loads.
+    CHECK(withImage("./sub/../inside.bmp") == "<no error>");
+
+    GltfBuilder b;
+    addTriangleMesh(b);
+    b.append("nodes", {{"mesh", 0}});
+    writeFile(dir.file("outside.bin"), b.binary());
+    const std::string bufferPath = dir.file("scene/buffer.gltf");
+    writeFile(bufferPath, b.gltfWithBin("../outside.bin"));
+    CHECK(errorOf([&] { vplgi::loadGltf(bufferPath); }) ==
+          bufferPath + ": buffer 0: uri \"../outside.bin\" points outside the scene's folder" + rule);
+}
+
+TEST_CASE("loadSceneSpec warns about a scene without lights or triangles, and loads it", "[scene_loader]")
+{
+    TempDir dir;
+    GltfBuilder b;
+    addTriangleMesh(b);
+    b.append("nodes", {{"mesh", 0}});
+    const std::string unlit = dir.file("unlit.gltf");
+    writeFile(unlit, b.gltfWithDataUri());
+    {
+        vplgi::WarningCapture warnings;
+        CHECK(vplgi::loadSceneSpec(unlit).scene.triangleCount() == 1);
+        CHECK(warnings.messages() ==
+              std::vector<std::string>{unlit + ": the scene has no lights (no light with intensity > 0, no emissive "
+                                               "surface): it renders black"});
+    }
+    // A light of intensity 0 lights nothing either; one of intensity 1 does.
+    const std::string file = dir.file("dark.json");
+    writeFile(file, R"({"source": "gltf:unlit.gltf", "lights": [{"name": "off", "type": "point", "intensity": 0}]})");
+    {
+        vplgi::WarningCapture warnings;
+        vplgi::loadSceneSpec(file);
+        CHECK(warnings.messages().size() == 1);
+    }
+    writeFile(file, R"({"source": "gltf:unlit.gltf", "lights": [{"name": "on", "type": "point", "intensity": 1}]})");
+    {
+        vplgi::WarningCapture warnings;
+        vplgi::loadSceneSpec(file);
+        CHECK(warnings.messages().empty());
+    }
+    // No triangles at all (a glTF with only a light): two warnings, no error.
+    const std::string empty = dir.file("empty.gltf");
+    writeFile(empty, R"({"asset": {"version": "2.0"}})");
+    {
+        vplgi::WarningCapture warnings;
+        CHECK(vplgi::loadSceneSpec(empty).scene.triangleCount() == 0);
+        REQUIRE(warnings.messages().size() == 2);
+        CHECK(warnings.messages()[0] == empty + ": the scene has no triangles");
+    }
+    // Built-in scenes are lit: no warning.
+    {
+        vplgi::WarningCapture warnings;
+        vplgi::loadSceneSpec("cornell");
+        CHECK(warnings.messages().empty());
+    }
+}
+
 TEST_CASE("scene file: a built-in source with light and camera overrides plus animations and settings",
           "[scene_loader]")
 {
@@ -809,7 +978,12 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
     CHECK(errorFor(R"({"source": "obj:x.obj"})") ==
           path + ": \"source\" must start with \"builtin:\" or \"gltf:\" (got \"obj:x.obj\")");
     CHECK(errorFor(R"({"name": "x"})") == path + ": needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
-    CHECK(errorFor(R"({"source": "gltf:missing.glb"})") == dir.file("missing.glb") + ": no such file");
+    CHECK(errorFor(R"({"source": "gltf:missing.glb"})") ==
+          path + ": \"source\": " + dir.file("missing.glb") + ": no such file");
+    // JSON has no NaN or Inf: a number too large for a double is how a file says "not finite".
+    CHECK(
+        errorFor(R"({"source": "builtin:furnace", "lights": [{"name": "a", "type": "point", "intensity": 1e999}]})") ==
+        path + ": invalid JSON: number overflow parsing '1e999' (numbers must be finite)");
     CHECK(errorFor(R"({"source": "builtin:furnace", "animations": [{"name": "a", "light": "ghost", "keys": []}]})") ==
           path + ": animations[0]: no light named \"ghost\"");
     CHECK(errorFor(R"({"source": "builtin:furnace", "animations": [{"name": "a", "light": "center",
