@@ -1,8 +1,15 @@
 // `vplgi render`: headless EGL rendering to PNG (tone-mapped display image) or EXR (linear).
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <epoxy/gl.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "commands.h"
@@ -11,6 +18,7 @@
 #include "core/util/image_io.h"
 #include "core/util/params.h"
 #include "gl/api/context.h"
+#include "gl/api/debug.h"
 #include "session.h"
 
 namespace vplgi {
@@ -42,6 +50,63 @@ void writeOutput(Session& session, const std::string& path)
     if (isFloatImagePath(path)) writeImage(path, session.renderer().readRadiance());
     else writeImage(path, session.renderer().readDisplay());
 }
+
+// Resident set size of this process [KiB] from /proc/self/statm (0 where there is none).
+long residentKiB()
+{
+    std::ifstream statm("/proc/self/statm");
+    long pages = 0, resident = 0;
+    if (!(statm >> pages >> resident)) return 0;
+    return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+// Pixels of `image` with a NaN or infinite colour channel (alpha is the tone map's constant 1).
+long countNonFinitePixels(const ImageRGBA32F& image)
+{
+    long count = 0;
+    for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4)
+        if (!std::isfinite(image.pixels[i]) || !std::isfinite(image.pixels[i + 1]) || !std::isfinite(image.pixels[i + 2]))
+            ++count;
+    return count;
+}
+
+// render --stats: one CSV row per frame for the soak (scripts/soak). The frame time brackets
+// renderFrame() with glFinish (GPU timer queries are not trustworthy on llvmpipe, ENVIRONMENT.md);
+// the radiance readback and the NaN count come after it, outside the time.
+class FrameStats {
+public:
+    FrameStats() : mLastErrors(gl::highSeverityMessageCount()) { mRows << "frame,ms,rss_kb,gl_errors,nonfinite_pixels\n"; }
+    void begin()
+    {
+        glFinish();
+        mStart = std::chrono::steady_clock::now();
+    }
+    void end(int frame, Renderer& renderer)
+    {
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mStart).count();
+        const long nonFinite = countNonFinitePixels(renderer.readRadiance());
+        const int errors = gl::highSeverityMessageCount();
+        mRows << frame << ',' << ms << ',' << residentKiB() << ',' << (errors - mLastErrors) << ',' << nonFinite << '\n';
+        mLastErrors = errors;
+    }
+    // Written once at the end through a temporary name: no half file when a frame fails.
+    void write(const std::string& path) const
+    {
+        const std::string temporary = path + ".partial";
+        {
+            std::ofstream file(temporary);
+            file << mRows.str();
+            require(static_cast<bool>(file.flush()), path + ": cannot write");
+        }
+        std::filesystem::rename(temporary, path);
+    }
+
+private:
+    std::ostringstream mRows;
+    std::chrono::steady_clock::time_point mStart;
+    int mLastErrors = 0;
+};
 
 // --list-params: every parameter of the technique(s), no GL context needed.
 int listParams(const OptionParser& parser)
@@ -76,6 +141,9 @@ int runRender(const std::vector<std::string>& args)
                 "its value, range or choices and doc, then exit (--scene defaults to cornell)");
     parser.flag("headless", "accepted for symmetry: render is always headless");
     parser.flag("quiet", "do not print the configuration and timings");
+    parser.value("stats", "FILE", "write a CSV with one row per frame: frame, ms (renderFrame bracketed by "
+                 "glFinish), rss_kb, gl_errors (KHR_debug errors in the frame), nonfinite_pixels (NaN/Inf in "
+                 "the radiance output, read back every frame); for scripts/soak");
     if (!parser.parse(args)) return 0;
     if (parser.has("list-params")) return listParams(parser);
 
@@ -84,6 +152,12 @@ int runRender(const std::vector<std::string>& args)
     const AnimationOptions animation = animationOptions(parser, 1000000);
     const std::string out = parser.get("out");
     checkOutputPath(out);
+    const std::string statsPath = parser.get("stats");
+    if (!statsPath.empty()) {
+        const std::filesystem::path statsDir = std::filesystem::path(statsPath).parent_path();
+        require(statsDir.empty() || std::filesystem::is_directory(statsDir),
+                statsPath + ": directory " + statsDir.string() + " does not exist");
+    }
     const bool sequence = isSequencePattern(out);
     const bool defaultOut = !parser.has("out");
     std::filesystem::path outDir = std::filesystem::path(out).parent_path();
@@ -99,9 +173,12 @@ int runRender(const std::vector<std::string>& args)
     context = gl::createHeadlessContext();
     if (!quiet) std::printf("context = %s\n", context->description().c_str());
     session.createRenderer();
+    std::unique_ptr<FrameStats> stats = statsPath.empty() ? nullptr : std::make_unique<FrameStats>();
     for (int frame = 0; frame < animation.frames; ++frame) {
         session.applyAnimations(animation.timeOf(frame));
+        if (stats) stats->begin();
         session.renderer().renderFrame(session.camera(), size.width, size.height, animation.timeOf(frame));
+        if (stats) stats->end(frame, session.renderer());
         if (sequence) {
             writeOutput(session, framePath(out, frame));
             if (!quiet) std::printf("%s\n", framePath(out, frame).c_str());
@@ -117,6 +194,7 @@ int runRender(const std::vector<std::string>& args)
             std::printf("  %*s%-*s %9.2f ms\n", 2 * t.depth, "", std::max(1, 16 - 2 * t.depth), t.name.c_str(),
                         t.milliseconds);
     }
+    if (stats) stats->write(statsPath);
     if (sequence) {
         if (quiet) std::printf("%s\n", framePath(out, animation.frames - 1).c_str());
         return 0;

@@ -4,6 +4,8 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/scene/image_downscale.h"
+#include "gl/api/limits.h"
 #include "glsl/shared/bindings.h"
 
 namespace vplgi {
@@ -75,11 +77,20 @@ const gl::Texture& GpuScene::imageTexture(int image, bool srgb) const
     auto key = std::make_pair(image, srgb);
     auto it = mImageTextures.find(key);
     if (it != mImageTextures.end()) return it->second;
-    const Image& img = mScene.images[image];
+    const Image& loaded = mScene.images[image];
+    const std::string name = "image " + std::to_string(image) + " " + loaded.name;
+    // The loader caps images at kMaxImageEdge; an implementation with a smaller GL_MAX_TEXTURE_SIZE
+    // gets a downscaled copy (with a warning) instead of a GL error and a missing texture.
+    Image downscaled;
+    const int maxEdge = gl::queryLimits().maxTextureSize;
+    if (maxEdge > 0 && (loaded.width > maxEdge || loaded.height > maxEdge)) {
+        downscaled = loaded;
+        downscaleToFit(downscaled, maxEdge, name, "GL_MAX_TEXTURE_SIZE " + std::to_string(maxEdge));
+    }
+    const Image& img = downscaled.rgba.empty() ? loaded : downscaled;
     auto& textures = const_cast<std::map<std::pair<int, bool>, gl::Texture>&>(mImageTextures);
     return textures
-        .emplace(key, makeTexture("image " + std::to_string(image) + " " + img.name + (srgb ? " (sRGB)" : ""),
-                                  img.width, img.height, srgb, img.rgba.data()))
+        .emplace(key, makeTexture(name + (srgb ? " (sRGB)" : ""), img.width, img.height, srgb, img.rgba.data()))
         .first->second;
 }
 

@@ -27,6 +27,7 @@
 #include <tiny_gltf.h>
 
 #include "core/scene/builtin_scenes.h"
+#include "core/scene/image_downscale.h"
 #include "core/util/error.h"
 #include "core/util/warning.h"
 
@@ -479,6 +480,7 @@ private:
                 dst[3] = channels == 4 ? channel(p, 3) : 255;
             }
         }
+        downscaleToFit(out, kMaxImageEdge, what, "at most " + std::to_string(kMaxImageEdge) + " texels per edge");
         return out;
     }
 

@@ -547,6 +547,21 @@ void SMCIRSampler::estimateRenderingDensities()
         mSet.slots[slot].density = k > 0 ? estimateKNNDensity(k, n, mDensityR2[slot]) : 0.0f;
 }
 
+// Numeric guard before publication: every valid slot has a finite radiance, a finite density >= 0
+// and a finite intensity L / p (radiance set to 0 otherwise: a dark VPL keeps its slot and the n
+// of the estimator). A NaN from a degenerate surface or an overflowing estimate would otherwise
+// reach every pixel the VPL lights, and through the filter their neighbours.
+void SMCIRSampler::guardPublishedVPLs()
+{
+    const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    for (VPL& vpl : mSet.slots) {
+        if (!vpl.valid) continue;
+        if (!std::isfinite(vpl.density) || vpl.density < 0.0f) vpl.density = 0.0f;
+        if (!finite(vpl.radiance) || (vpl.density > 0.0f && !finite(vpl.radiance / vpl.density)))
+            vpl.radiance = glm::vec3(0.0f);
+    }
+}
+
 // --- Slots ---------------------------------------------------------------------------------------
 
 void SMCIRSampler::assignSlot(std::uint32_t slot, const Candidate& candidate, const std::vector<CameraPoint>& points)
@@ -667,6 +682,7 @@ void SMCIRSampler::initialize(const FrameSnapshot& snapshot, const Progress& pro
     mTimes.radiosity += millisecondsSince(t);
     t = Clock::now();
     estimateRenderingDensities();
+    guardPublishedVPLs();
     mTimes.knn = millisecondsSince(t);
     mInitialized = true;
     mTimes.rays = mRayCount;
@@ -789,6 +805,7 @@ void SMCIRSampler::step(const FrameSnapshot& snapshot)
     // Line 19: ESTIMATEPROBABILITYDENSITIES(Y) with k of eq. (8).
     t = Clock::now();
     estimateRenderingDensities();
+    guardPublishedVPLs();
     mTimes.knn += millisecondsSince(t);
 
     mSet.changed = std::move(changed);

@@ -297,6 +297,7 @@ private:
     void estimateCandidateDensities(std::vector<Candidate>& candidates);
     void estimateStaleRadiance();
     void estimateRenderingDensities();
+    void guardPublishedVPLs();
     void assignSlot(std::uint32_t slot, const Candidate& candidate, const std::vector<CameraPoint>& points);
     void clearSlot(std::uint32_t slot);
 

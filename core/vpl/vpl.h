@@ -13,6 +13,7 @@
 // neither too dark nor too bright. The paper writes I for both; they agree when the set is full.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -27,7 +28,14 @@ struct VPL {
     float density = 0.0f;      // p(y): VPL positions per unit area [1/m^2], integrates to 1 over the set
     bool valid = false;        // slot in use
 
-    glm::vec3 intensity() const { return density > 0.0f ? radiance / density : glm::vec3(0.0f); }
+    // Numeric guard: a density so small (or a radiance so large) that L / p overflows, or a NaN
+    // anywhere, gives no light rather than an infinite one that would poison every pixel it reaches.
+    glm::vec3 intensity() const
+    {
+        if (!(density > 0.0f)) return glm::vec3(0.0f);
+        const glm::vec3 i = radiance / density;
+        return std::isfinite(i.x) && std::isfinite(i.y) && std::isfinite(i.z) ? i : glm::vec3(0.0f);
+    }
 };
 
 // The VPL set as a renderer sees it: stable slots (a VPL keeps its slot while it lives) and the

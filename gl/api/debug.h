@@ -10,7 +10,7 @@ namespace vplgi::gl {
 void installDebugCallback(bool throwOnHighSeverity);
 // Throws Error with the first high-severity message since the last call (when enabled).
 void checkDebugMessages();
-// Number of high-severity messages seen so far (for tests).
+// Number of high-severity or error-type messages seen so far (tests, render --stats).
 int highSeverityMessageCount();
 
 // Scoped debug group (shows up in RenderDoc / apitrace).

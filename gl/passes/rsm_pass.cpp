@@ -6,6 +6,7 @@
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "core/util/power_of_two.h"
+#include "gl/api/limits.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/light_view.h"
 #include "glsl/shared/rsm.h"
@@ -143,6 +144,14 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     require(isPowerOfTwo(params.size), "rsm.size must be a power of two, not " + std::to_string(params.size));
     mViews = makeViews(scene.scene().worldBounds(), lights, params.size);
     if (mViews.empty()) return;
+    // The techniques lay the layers side by side in one texture (the importance maps), so size x
+    // layers must fit GL_MAX_TEXTURE_SIZE: the largest power of two that does.
+    int fit = 1;
+    while (2 * fit <= gl::queryLimits().maxTextureSize / layerCount()) fit *= 2;
+    mSize = gl::clampToLimit(params.size, fit, "rsm.size",
+                             "GL_MAX_TEXTURE_SIZE / RSM layers (" + std::to_string(layerCount()) +
+                                 " layers side by side in the importance maps)");
+    if (mSize != params.size) mViews = makeViews(scene.scene().worldBounds(), lights, mSize);
     std::vector<shared::RSMLayerLight> layerLights;
     for (const RSMView& view : mViews) {
         const glm::vec3 where = view.kind == shared::kRSMLightDirectional
@@ -152,8 +161,8 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     }
     gl::uploadVector(mLayerLights, "rsm layer lights", layerLights);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "rsm");
-    mTarget.resize(params.size, params.size, layerCount());
-    mLevels = mipLevelCount(params.size);
+    mTarget.resize(mSize, mSize, layerCount());
+    mLevels = mipLevelCount(mSize);
     mTarget.bindForDrawing();
     mTarget.clear(glm::vec4(0.0f), 1.0f);
     glEnable(GL_DEPTH_TEST);

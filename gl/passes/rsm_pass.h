@@ -135,6 +135,8 @@ public:
     const gl::Buffer& layerLights() const { return mLayerLights; }
     int layerCount() const { return static_cast<int>(mViews.size()); }
     int levelCount() const { return mLevels; }
+    // The edge of the last render's layers: rsm.size, clamped to the GL limits (gl/api/limits.h).
+    int size() const { return mSize; }
 
     // The views render() would use (CPU only; shared with the tests' CPU rasterisation).
     static std::vector<RSMView> makeViews(const AABB& bounds, const DirectLightSet& lights, int size);
@@ -146,6 +148,7 @@ private:
     std::vector<RSMView> mViews;
     gl::Buffer mLayerLights;
     int mLevels = 0;
+    int mSize = 0;
 };
 
 } // namespace vplgi

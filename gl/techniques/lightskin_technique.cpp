@@ -139,7 +139,7 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         mRSM->render(*mGpuScene, frame.lights, mParams.rsm);
     }
     const int layers = mRSM->layerCount();
-    const int size = mParams.rsm.size;
+    const int size = mRSM->size(); // rsm.size within the GL limits
     mShaded.resize(frame.width, frame.height);
     mVALsPerCache = 0;
     if (layers == 0 || cacheCount == 0) {

@@ -5,6 +5,7 @@
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "core/util/power_of_two.h"
+#include "gl/api/limits.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
 #include "glsl/shared/rsm.h"
@@ -94,13 +95,17 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
                                                 std::to_string(mParams.viewGrid));
     const std::string prefix(name());
     mValidLights = 0;
+    // N lights in one storage block, and a per-pixel shading loop over all N (llvmpipe stops it
+    // after 65535 iterations: N = 65536 would drop the last light).
+    mCount = gl::clampShaderLoopCount(
+        gl::clampStorageCount(mParams.count, sizeof(shared::VSGLight), prefix + ".count"), prefix + ".count");
     // RSMs (section 4: 256^2), every frame: lights move.
     {
         gl::PassTimer::Scope scope(frame.timer, "RSMs");
         mRSM->render(*mGpuScene, frame.lights, mParams.rsm);
     }
     const int layers = mRSM->layerCount();
-    const int size = mParams.rsm.size;
+    const int size = mRSM->size(); // rsm.size within the GL limits
     if (layers == 0) {
         // No spot, point or directional light: no one-bounce light from RSMs.
         mShaded.resize(frame.width, frame.height);
@@ -160,35 +165,35 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         mSampler->build(mImportance, NextRead::None);
         const std::uint32_t seed = mParams.animateSeed ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
                                                        : mParams.seed;
-        mSampler->sample(mImportance, mParams.count, seed, NextRead::StorageBuffer);
+        mSampler->sample(mImportance, mCount, seed, NextRead::StorageBuffer);
     }
     {
         gl::PassTimer::Scope scope(frame.timer, "VPL/VSGL generation");
-        const auto bytes = static_cast<GLsizeiptr>(mParams.count) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
+        const auto bytes = static_cast<GLsizeiptr>(mCount) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
         if (mLights.size() < bytes) mLights = gl::Buffer(prefix + " lights", bytes);
         bindRSMLayout(mRSM->target(), !mPointLights);
         bindStorageBuffer(shared::kBindingImportanceSamples, mSampler->samples());
         bindStorageBuffer(shared::kBindingVSGLights, mLights);
         const gl::Program& generate = mGeneratePass.program();
         generate.set("uMode", mPointLights ? 1 : 0);
-        generate.set("uCount", mParams.count);
+        generate.set("uCount", mCount);
         generate.set("uSize", size);
         generate.set("uLevels", mRSM->levelCount());
         generate.set("uLevel", 0);
         generate.set("uSmoothness", mParams.smoothness);
-        mGeneratePass.dispatch(mParams.count, 1, NextRead::StorageBuffer);
+        mGeneratePass.dispatch(mCount, 1, NextRead::StorageBuffer);
         for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
             glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
     }
     const bool visibility = mParams.visibility == VSGLParams::ISM;
     if (visibility) {
         gl::PassTimer::Scope scope(frame.timer, "shadow maps");
-        if (!mISM || mISM->maxLights() < mParams.count) {
-            mISM = std::make_unique<ImperfectShadowMaps>(*mShaders, mParams.ism, mParams.count);
+        if (!mISM || mISM->maxLights() < mCount) {
+            mISM = std::make_unique<ImperfectShadowMaps>(*mShaders, mParams.ism, mCount);
             mISM->setScene(*mScene);
         }
         // VSGLight: r^2 in the position's w, the valid flag in the normal's (vec4 1).
-        mISM->update(mLights, mParams.count, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1);
+        mISM->update(mLights, mCount, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1);
     }
     {
         gl::PassTimer::Scope scope(frame.timer, "radiance estimation");
@@ -197,7 +202,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         bindStorageBuffer(shared::kBindingVSGLights, mLights);
         bindStorageBuffer(shared::kBindingRSMLayers, mRSM->layerLights());
         const gl::Program& shading = mShading->program();
-        shading.set("uCount", mParams.count);
+        shading.set("uCount", mCount);
         shading.set("uPointLights", mPointLights ? 1 : 0);
         shading.set("uBiasAlpha", mParams.biasAlpha);
         shading.set("uClampGeometry", mPointLights ? mParams.clampGeometry : 0.0f);
@@ -211,7 +216,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
 
 std::vector<std::pair<std::string, double>> VSGLTechnique::frameStats() const
 {
-    return {{mPointLights ? "vpls" : "vsgls", static_cast<double>(mParams.count)},
+    return {{mPointLights ? "vpls" : "vsgls", static_cast<double>(mCount)},
             {"view lights", static_cast<double>(mViewLightCount)},
             {"rsm layers", static_cast<double>(mRSM ? mRSM->layerCount() : 0)}};
 }

@@ -122,6 +122,7 @@ private:
     gl::RenderTarget mShaded;    // radiance, cancelled fraction
     int mValidLights = 0;
     int mViewLightCount = 0;
+    int mCount = 0; // the N in effect: count clamped to the GL limits (gl/api/limits.h)
 };
 
 } // namespace vplgi

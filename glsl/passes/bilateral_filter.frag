@@ -58,10 +58,15 @@ void main()
                 vec3 d = positionQ.xyz - positionP.xyz;
                 w *= exp(-dot(d, d) * kp);
             }
-            sum += w * texelFetch(uInput, q, 0);
+            // Numeric guard: a NaN or infinite tap (a defect upstream) would poison every pixel
+            // whose window holds it (w * NaN, inf - inf); it gets weight 0 instead.
+            vec4 value = texelFetch(uInput, q, 0);
+            if (any(isnan(value)) || any(isinf(value))) continue;
+            sum += w * value;
             weightSum += w;
         }
     }
-    // p is in its own window with a weight near 1 (its normal with itself), so weightSum > 0.
-    outRadiance = sum / weightSum;
+    // p is in its own window with a weight near 1 (its normal with itself), so weightSum > 0 unless
+    // p and every other tap were non-finite (then black).
+    outRadiance = weightSum > 0.0 ? sum / weightSum : vec4(0.0);
 }

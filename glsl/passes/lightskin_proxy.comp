@@ -72,7 +72,7 @@ void main()
             selection = 1.0;
         } else {
             ImportanceSample d = draws[j];
-            if (d.x < 0 || d.probability <= 0.0) continue;
+            if (d.x < 0 || !(d.probability > 0.0)) continue; // also a NaN probability
             texel = ivec3(d.x % uSize, d.y, d.x / uSize);
             selection = float(uSelectionCount) * d.probability;
         }
@@ -105,6 +105,11 @@ void main()
         float base = (uFluxWeights != 0 ? luminanceRec709(flux) : 1.0) / selection;
         float wd = base * proxyWeightDiffuse(formFactor, uEpsilon);
         float wg = base * proxyWeightGlossy(formFactor, cosMirror, k, uEpsilon);
+        // Numeric guard: a near-zero P_VAL or area, or an overflowed RSM flux, would make this VAL
+        // infinitely strong and the cache's proxy NaN (inf / inf in the finalize pass): dropped.
+        if (any(isnan(radiance)) || any(isinf(radiance)) || isnan(wd) || isinf(wd) || isnan(wg) || isinf(wg) ||
+            any(isnan(v)) || any(isinf(v)))
+            continue;
         sums[0] += wd;
         sums[1] += wd * v.x; sums[2] += wd * v.y; sums[3] += wd * v.z;
         sums[4] += wd * v.x * v.x; sums[5] += wd * v.y * v.y; sums[6] += wd * v.z * v.z;

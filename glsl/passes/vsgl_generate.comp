@@ -90,6 +90,14 @@ void main()
     float normalLength = min(length(normal.xyz), 1.0);
     light.normalValid = vec4(normal.xyz / length(normal.xyz), 1.0);
     light.flux = vec4(flux.rgb * fluxScale * normalLength, float(texel.z)); // w: the layer (RSMLayerLight)
+    // Numeric guard: a draw of (nearly) zero probability makes 1 / (N P_j) overflow, and an RSM texel
+    // can hold an overflowed flux (half floats end at 65504); such a light would be infinitely
+    // strong, and inf * 0 poisons every pixel it reaches with NaN. It is dropped (left invalid).
+    if (any(isnan(light.flux.rgb)) || any(isinf(light.flux.rgb)) || any(isnan(light.positionRadius2)) ||
+        any(isinf(light.positionRadius2))) {
+        lights[i] = VSGLight(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0, 0.0, 1.0, 0.0));
+        return;
+    }
     light.diffuse = vec4(diffuse.rgb, specular.w);
     light.specular = vec4(specular.rgb, lobe.w);
     light.lobe = vec4(axis, sharpness);

@@ -12,11 +12,15 @@ VPLGI_FUNC float luminanceRec709(vec3 c)
 }
 
 // L_d = L / (1 + L) applied to luminance after exposure; colour scaled by L_d / L.
+// Numeric guard: a NaN or infinite channel makes the luminance NaN or infinite (every weight is
+// positive), and Reinhard would then give NaN (inf / inf), which clamp() does not define; such a
+// pixel shows black. The linear radiance output keeps the value, so `render --stats` and the soak
+// still count it.
 VPLGI_FUNC vec3 toneMapReinhard(vec3 radiance, float exposure)
 {
     vec3 c = radiance * exposure;
     float l = luminanceRec709(c);
-    if (l <= 0.0f) return vec3(0.0f);
+    if (!(l > 0.0f) || isinf(l)) return vec3(0.0f);
     return clamp(c * (1.0f / (1.0f + l)), vec3(0.0f), vec3(1.0f));
 }
 

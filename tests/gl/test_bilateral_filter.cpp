@@ -409,6 +409,40 @@ TEST_CASE("bilateral filter: a foreground object over a far background does not 
     }
 }
 
+TEST_CASE("bilateral filter: a NaN or infinite input pixel leaves its neighbours finite", "[gl][guards]")
+{
+    test::ensureGLContext();
+    CrossBilateralFilter filter(test::shaders());
+    const CpuGBuffer g = wallScene(64, 48);
+    Fixture fixture(g);
+    std::vector<glm::vec4> radiance = wallRadiance(g);
+    const BilateralFilterParams params; // the defaults: a 8x8 window, normal and distance terms
+    const std::vector<glm::vec4> clean = fixture.run(filter, radiance, params);
+    // Two poisoned pixels of the lit near floor, in each other's window: one NaN, one +inf.
+    int poisoned = 0;
+    for (int y = g.height / 4; y < g.height && poisoned < 2; ++y)
+        for (int x = g.width / 2; x < g.width / 2 + 2 && poisoned < 2; ++x)
+            if (wallRegion(g, x, y) == WallRegion::NearFloor) {
+                radiance[g.index(x, y)] = glm::vec4(poisoned == 0 ? std::nanf("") : kInfinity);
+                ++poisoned;
+            }
+    REQUIRE(poisoned == 2);
+    const std::vector<glm::vec4> out = fixture.run(filter, radiance, params);
+    int nonFinite = 0;
+    int changed = 0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (!std::isfinite(out[i].r) || !std::isfinite(out[i].g) || !std::isfinite(out[i].b) || !std::isfinite(out[i].a))
+            ++nonFinite;
+        if (out[i] != clean[i]) ++changed;
+    }
+    // Without the guard every lit pixel whose 8x8 window holds a poisoned one is NaN (measured: 72).
+    CHECK(nonFinite == 0);
+    // The poisoned taps drop out of their neighbours' sums, which then differ a little from the
+    // clean run; pixels farther than the window are untouched (bit-identical).
+    CHECK(changed > 0);
+    CHECK(changed <= 2 * 8 * 8);
+}
+
 TEST_CASE("bilateral filter: bit-identical over runs", "[gl][determinism]")
 {
     test::ensureGLContext();

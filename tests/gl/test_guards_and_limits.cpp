@@ -1,0 +1,124 @@
+// Numeric guards and GL limits on the GPU side (issue 13 part 6): the VSGL/VPL generation drops a
+// light whose flux is not finite (an overflowed RSM texel or a near-zero draw probability), and
+// the light counts of vsgl / vpl-brsm are clamped to llvmpipe's loop budget (gl/api/limits.h).
+// (The bilateral filter's guard is tested with the filter: tests/gl/test_bilateral_filter.cpp.)
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/api/context.h"
+#include "gl/api/limits.h"
+#include "gl/passes/compute_pass.h"
+#include "gl/passes/rsm_pass.h"
+#include "glsl/shared/bindings.h"
+#include "glsl/shared/importance.h"
+#include "glsl/shared/rsm.h"
+#include "glsl/shared/sg.h"
+#include "buffer_readback.h"
+#include "gl_test_context.h"
+#include "test_scenes.h"
+
+using namespace vplgi;
+
+TEST_CASE("VPL/VSGL generation: a light whose flux overflows is dropped, not infinite", "[guards][vsgl]")
+{
+    test::ensureGLContext();
+    const int size = 4;
+    // A flat, lit 4x4 RSM; texel (0, 0) holds an overflowed (infinite) flux, texel (1, 0) a large one.
+    std::vector<std::vector<glm::vec4>> texels(shared::kRSMAttachmentCount,
+                                               std::vector<glm::vec4>(size * size, glm::vec4(0.0f)));
+    for (int i = 0; i < size * size; ++i) {
+        const glm::vec3 p(0.1f * static_cast<float>(i % size), 0.0f, 0.1f * static_cast<float>(i / size));
+        texels[shared::kRSMPosition][static_cast<std::size_t>(i)] = glm::vec4(p, glm::dot(p, p));
+        texels[shared::kRSMNormal][static_cast<std::size_t>(i)] = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+        texels[shared::kRSMFlux][static_cast<std::size_t>(i)] = glm::vec4(0.5f, 0.5f, 0.5f, 0.0f);
+        texels[shared::kRSMDiffuse][static_cast<std::size_t>(i)] = glm::vec4(0.5f);
+        texels[shared::kRSMLobe][static_cast<std::size_t>(i)] = glm::vec4(0.0f, 1.0f, 0.0f, 0.5f);
+    }
+    texels[shared::kRSMFlux][0] = glm::vec4(std::numeric_limits<float>::infinity(), 1.0f, 1.0f, 0.0f);
+    texels[shared::kRSMFlux][1] = glm::vec4(1e10f, 1e10f, 1e10f, 0.0f);
+    gl::RenderTarget rsm = makeRSMLayoutTarget("guard test RSM", false);
+    rsm.resize(size, size, 1);
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+        glTextureSubImage3D(rsm.color(a).id(), 0, 0, 0, 0, size, size, 1, GL_RGBA, GL_FLOAT,
+                            texels[static_cast<std::size_t>(a)].data());
+    // Draw 0: the infinite texel. Draw 1: the large texel at the smallest normal float probability,
+    // 1e10 / (3 * 1.2e-38) = 2.8e47 overflows. Draw 2: an ordinary one, flux 0.5 / (3 * 0.25).
+    const int count = 3;
+    const std::vector<shared::ImportanceSample> draws = {
+        {0, 0, 0.5f, 1.0f}, {1, 0, 1.2e-38f, 1.0f}, {2, 1, 0.25f, 1.0f}};
+    gl::Buffer drawBuffer("guard test draws", static_cast<GLsizeiptr>(draws.size() * sizeof(shared::ImportanceSample)),
+                          draws.data());
+    gl::Buffer lightBuffer("guard test lights", count * static_cast<GLsizeiptr>(sizeof(shared::VSGLight)));
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+        glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), rsm.color(a).id());
+        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+    }
+    ComputePass generate(test::shaders(), "VSGL generation", "passes/vsgl_generate.comp");
+    bindStorageBuffer(shared::kBindingImportanceSamples, drawBuffer);
+    bindStorageBuffer(shared::kBindingVSGLights, lightBuffer);
+    for (int mode : {0, 1}) { // VSGLs (filtered, level 0 here) and the vpl-brsm point lights
+        INFO("uMode " << mode);
+        generate.program().set("uMode", mode);
+        generate.program().set("uCount", count);
+        generate.program().set("uSize", size);
+        generate.program().set("uLevels", 1);
+        generate.program().set("uLevel", 0);
+        generate.program().set("uSmoothness", 1e-3f); // a tiny k: level 0 for every draw
+        generate.dispatch(count, 1, NextRead::BufferReadback);
+        const std::vector<shared::VSGLight> lights = test::readBuffer<shared::VSGLight>(lightBuffer, count);
+        for (int i = 0; i < count; ++i) {
+            INFO("light " << i);
+            const glm::vec4& f = lights[static_cast<std::size_t>(i)].flux;
+            // Without the guard lights 0 and 1 carry +inf (and NaN where inf meets 0 in shading).
+            CHECK(std::isfinite(f.r));
+            CHECK(std::isfinite(f.g));
+            CHECK(std::isfinite(f.b));
+        }
+        CHECK(lights[0].normalValid.w == 0.0f); // dropped
+        CHECK(lights[1].normalValid.w == 0.0f);
+        CHECK(lights[2].normalValid.w == 1.0f); // kept, with Phi / (N P)
+        CHECK(lights[2].flux.r == Approx(0.5f / (3.0f * 0.25f)).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("vsgl / vpl-brsm: count 65536 is clamped to llvmpipe's loop budget with a warning", "[limits][vsgl]")
+{
+    test::ensureGLContext();
+    const bool llvmpipe = gl::rendererName().find("llvmpipe") != std::string::npos;
+    const Scene scene = test::cornerScene(0.0f, 1.0f);
+    const Camera& camera = scene.cameras[0];
+    for (const std::string technique : {"vpl-brsm", "vsgl"}) {
+        INFO(technique);
+        auto render = [&](int count) {
+            std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
+                scene, technique,
+                {{"rsm.size", "32"}, {technique + ".count", std::to_string(count)}, {technique + ".visibility", "none"}});
+            return test::renderIndirect(*renderer, camera, 12, 9);
+        };
+        const std::size_t warningsBefore = gl::limitWarnings().size();
+        const ImageRGBA32F clamped = render(65536);
+        const ImageRGBA32F budget = render(65535);
+        const std::vector<std::string>& warnings = gl::limitWarnings();
+        const bool warned =
+            std::any_of(warnings.begin() + static_cast<long>(warningsBefore), warnings.end(), [&](const std::string& w) {
+                return w.find(technique + ".count = 65536") != std::string::npos && w.find("65535") != std::string::npos;
+            });
+        double sum = 0.0;
+        for (float v : budget.pixels) sum += v;
+        CHECK(sum > 0.0); // lit: the comparison below is of images, not of two black frames
+        if (llvmpipe) {
+            // Without the clamp the shading loop stops after 65535 lights of 65536 drawn (and the
+            // draws and Phi / (N P) differ): the images differ.
+            CHECK(test::firstBitDifference(clamped.pixels, budget.pixels) == -1);
+            CHECK(warned);
+        } else {
+            CHECK_FALSE(warned); // no loop budget elsewhere: nothing to clamp
+        }
+    }
+}
