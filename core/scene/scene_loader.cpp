@@ -123,6 +123,18 @@ std::string uniqueName(const std::string& preferred, const std::string& fallback
     throw Error(where + ":" + std::to_string(line) + ":" + std::to_string(column) + ": invalid JSON: " + why);
 }
 
+// The parser's other errors, e.g. out_of_range 406 for a number beyond a double ("1e400"), found by
+// fuzzing (tests/fuzz): "<where>: invalid JSON: number overflow parsing '1e400'", never nlohmann's
+// own exception, which names no file.
+[[noreturn]] void throwJsonError(const std::string& where, const nlohmann::json::exception& e)
+{
+    std::string why = e.what();
+    const std::size_t tag = why.find("] "); // drops nlohmann's "[json.exception.out_of_range.406] "
+    if (why.rfind("[json.exception.", 0) == 0 && tag != std::string::npos) why = why.substr(tag + 2);
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    throw Error(where + ": invalid JSON: " + why);
+}
+
 // ---------------------------------------------------------------------------------------------
 // glTF
 // ---------------------------------------------------------------------------------------------
@@ -168,6 +180,8 @@ void checkRequiredExtensions(const std::string& path, const std::string& bytes, 
     } catch (const nlohmann::json::parse_error& e) {
         // Reported like a scene file; in a .glb the position is within the JSON chunk.
         throwJsonParseError(binary ? path + ": JSON chunk" : path, text, e);
+    } catch (const nlohmann::json::exception& e) {
+        throwJsonError(binary ? path + ": JSON chunk" : path, e);
     }
     if (!doc.is_object()) return;
     auto it = doc.find("extensionsRequired");
@@ -1174,6 +1188,11 @@ Scene loadGltfFromMemory(const std::string& bytes, const std::string& path)
     return scene;
 }
 
+Scene loadSceneSource(const std::string& source, const std::string& sceneFilePath)
+{
+    return loadSource(SceneFileReader(sceneFilePath), source);
+}
+
 // Scene file keys (all optional except "source"):
 //   name            string, defaults to the file stem
 //   source          "builtin:<name>" or "gltf:<path>" (relative paths are relative to the file)
@@ -1195,13 +1214,16 @@ SceneDescription loadSceneFile(const std::string& path)
     return loadSceneFileFromText(readWholeFile(path), path);
 }
 
-SceneDescription loadSceneFileFromText(const std::string& text, const std::string& path)
+SceneDescription loadSceneFileFromText(const std::string& text, const std::string& path,
+                                       const SceneSourceLoader& sourceLoader)
 {
     Json doc;
     try {
         doc = Json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         throwJsonParseError(path, text, e);
+    } catch (const nlohmann::json::exception& e) {
+        throwJsonError(path, e);
     }
 
     SceneFileReader r(path);
@@ -1213,7 +1235,8 @@ SceneDescription loadSceneFileFromText(const std::string& text, const std::strin
     if (source == nullptr) r.fail("", "needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
     SceneDescription description;
     Scene& scene = description.scene;
-    scene = loadSource(r, r.string(*source, "", "source"));
+    const std::string sourceText = r.string(*source, "", "source");
+    scene = sourceLoader ? sourceLoader(sourceText, path) : loadSceneSource(sourceText, path);
     scene.name = fs::path(path).stem().string();
     if (const Json* v = SceneFileReader::find(doc, "name")) {
         scene.name = r.string(*v, "", "name");

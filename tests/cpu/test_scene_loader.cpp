@@ -668,6 +668,23 @@ TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_l
     }
 }
 
+TEST_CASE("a number beyond a double is invalid JSON naming the file (found by fuzzing)", "[scene_loader]")
+{
+    // nlohmann/json throws out_of_range (not parse_error) for it; it escaped the loaders, unnamed.
+    TempDir dir;
+    const std::string scene = dir.file("overflow.json");
+    writeFile(scene, R"({"source": "builtin:cornell", "lights": [{"name": "a", "intensity": 1e400}]})");
+    CHECK(errorOf([&] { vplgi::loadSceneFile(scene); }) == scene + ": invalid JSON: number overflow parsing '1e400'");
+
+    GltfBuilder b;
+    b.doc["asset"]["minVersion"] = "2.0";
+    std::string text = b.gltfWithDataUri();
+    text.insert(text.find('{') + 1, R"("extras": -2e400,)");
+    const std::string gltf = dir.file("overflow.gltf");
+    writeFile(gltf, text);
+    CHECK(errorOf([&] { vplgi::loadGltf(gltf); }) == gltf + ": invalid JSON: number overflow parsing '-2e400'");
+}
+
 TEST_CASE("glTF: external buffers and images are read only from the glTF file's folder", "[scene_loader]")
 {
     TempDir dir;

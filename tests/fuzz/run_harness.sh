@@ -7,7 +7,8 @@
 # New inputs go to CORPUS_ROOT/<harness>/work (emptied first), reproducers of crashes, leaks, timeouts
 # and out-of-memory to CORPUS_ROOT/<harness>/artifacts. Exit status: libFuzzer's (0 = nothing found).
 set -u
-harness=$1 root=$2 src=$3
+# Absolute paths: the harness changes into its sandbox directory before libFuzzer reads them.
+harness=$(realpath "$1") root=$(realpath "$2") src=$(realpath "$3")
 shift 3
 name=$(basename "$harness")
 seeds="$root/$name/seeds" work="$root/$name/work" artifacts="$root/$name/artifacts"
