@@ -17,10 +17,13 @@ rm -rf "$work" "$artifacts"
 mkdir -p "$work" "$artifacts"
 log="$root/$name/log.txt"
 
-# -timeout: an input that takes 10 s is a hang (the seeds take milliseconds). rss/malloc limits:
-# libFuzzer's default 2 GB, so a header claiming a huge image or buffer is an out-of-memory finding.
+# -timeout: an input that takes 30 s of wall-clock time is a hang (inputs take milliseconds, the
+# largest built-in scene about 1 s under ASan). A run at nice 19 next to builds can be starved for
+# longer: raise it there with VPLGI_FUZZ_TIMEOUT (a starved 59 ms input once "timed out" at 10 s).
+# rss/malloc limits: libFuzzer's default 2 GB, so a header claiming a huge image or buffer is an
+# out-of-memory finding.
 VPLGI_FUZZ_FILES="$root/files" "$harness" -dict="$src/$name.dict" -artifact_prefix="$artifacts/" \
-  -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "$@" "$work" "$seeds" > "$log" 2>&1
+  -timeout="${VPLGI_FUZZ_TIMEOUT:-30}" -rss_limit_mb=2048 -print_final_stats=1 "$@" "$work" "$seeds" > "$log" 2>&1
 rc=$?
 
 executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
