@@ -92,10 +92,12 @@ void Scene::validate() const
         require(mesh.indices.size() % 3 == 0, what + ": index count is not a multiple of 3");
         require(mesh.material >= 0 && mesh.material < static_cast<int>(materials.size()),
                 what + ": material index out of range");
+        // Per element: the message is built only on failure (require() would build it per vertex,
+        // which made validate() the bulk of loading a large scene).
         for (std::uint32_t index : mesh.indices)
-            require(index < mesh.vertices.size(), what + ": vertex index out of range");
+            if (index >= mesh.vertices.size()) throw Error(what + ": vertex index out of range");
         for (const Vertex& v : mesh.vertices)
-            require(finite3(v.position) && finite3(v.normal), what + ": non-finite vertex");
+            if (!(finite3(v.position) && finite3(v.normal))) throw Error(what + ": non-finite vertex");
     }
     for (std::size_t i = 0; i < instances.size(); ++i)
         require(instances[i].mesh >= 0 && instances[i].mesh < static_cast<int>(meshes.size()),

@@ -126,14 +126,19 @@ std::string uniqueName(const std::string& preferred, const std::string& fallback
     throw Error(where + ":" + std::to_string(line) + ":" + std::to_string(column) + ": invalid JSON: " + why);
 }
 
-// nlohmann's other parse-time failure: a number too large for a double ("1e999"), which is how a
-// JSON file spells a non-finite value (JSON has no NaN or Inf).
-[[noreturn]] void throwJsonValueError(const std::string& where, const nlohmann::json::exception& e)
+// The parser's other errors, e.g. out_of_range 406 for a number beyond a double ("1e400"), found by
+// fuzzing (tests/fuzz): "<where>: invalid JSON: number overflow parsing '1e400'", never nlohmann's
+// own exception, which names no file.
+[[noreturn]] void throwJsonError(const std::string& where, const nlohmann::json::exception& e)
 {
     std::string why = e.what();
-    const std::size_t bracket = why.find("] ");
-    if (bracket != std::string::npos) why = why.substr(bracket + 2);
-    throw Error(where + ": invalid JSON: " + why + " (numbers must be finite)");
+    const std::size_t tag = why.find("] "); // drops nlohmann's "[json.exception.out_of_range.406] "
+    if (why.rfind("[json.exception.", 0) == 0 && tag != std::string::npos) why = why.substr(tag + 2);
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    // A number too large for a double ("1e999") is how a JSON file spells a non-finite value (JSON
+    // has no NaN or Inf).
+    if (e.id == 406) why += " (numbers must be finite)";
+    throw Error(where + ": invalid JSON: " + why);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -152,24 +157,21 @@ const std::set<std::string>& supportedRequiredExtensions()
 }
 
 // The JSON text of a .gltf, or the JSON chunk of a .glb; empty when it cannot be found.
-std::string gltfJsonText(const std::string& path, bool binary)
+std::string gltfJsonText(const std::string& bytes, bool binary)
 {
-    if (!binary) return readWholeFile(path);
+    if (!binary) return bytes;
     // Anything that is not a well-formed GLB header yields "", which parses as invalid JSON; let
     // tinygltf describe those files instead (see checkGltfDocument).
-    std::ifstream in(path, std::ios::binary);
-    unsigned char header[20] = {};
-    if (!in.read(reinterpret_cast<char*>(header), sizeof(header))) return "";
-    const auto u32 = [&](int offset) {
+    if (bytes.size() < 20) return "";
+    const auto u32 = [&](std::size_t offset) {
         std::uint32_t v = 0;
-        std::memcpy(&v, header + offset, 4); // glb is little-endian, as is every platform we build on
+        std::memcpy(&v, bytes.data() + offset, 4); // glb is little-endian, as is every platform we build on
         return v;
     };
     if (u32(0) != 0x46546C67u || u32(16) != 0x4E4F534Au) return ""; // "glTF", "JSON"
-    std::uint32_t length = std::min(u32(12), u32(8));
-    std::string text(length, '\0');
-    if (!in.read(text.data(), static_cast<std::streamsize>(length))) return "";
-    return text;
+    const std::size_t length = std::min(u32(12), u32(8));
+    if (length > bytes.size() - 20) return "";
+    return bytes.substr(20, length);
 }
 
 // "%2E%2E" -> "..": glTF URIs are percent-encoded (RFC 3986); checked in decoded form so that an
@@ -221,9 +223,9 @@ std::string uriOutsideFolderReason(const std::string& uri)
 // Checks on the raw JSON, before tinygltf runs: an unsupported required extension often also makes
 // tinygltf fail (KHR_texture_basisu images cannot be decoded), and its name is the message the user
 // needs; external files outside the scene's folder must be refused before tinygltf opens them.
-void checkGltfDocument(const std::string& path, bool binary)
+void checkGltfDocument(const std::string& path, const std::string& bytes, bool binary)
 {
-    const std::string text = gltfJsonText(path, binary);
+    const std::string text = gltfJsonText(bytes, binary);
     if (binary && text.empty()) return;
     nlohmann::json doc;
     try {
@@ -232,7 +234,7 @@ void checkGltfDocument(const std::string& path, bool binary)
         // Reported like a scene file; in a .glb the position is within the JSON chunk.
         throwJsonParseError(binary ? path + ": JSON chunk" : path, text, e);
     } catch (const nlohmann::json::exception& e) {
-        throwJsonValueError(path, e);
+        throwJsonError(binary ? path + ": JSON chunk" : path, e);
     }
     if (!doc.is_object()) return;
     auto it = doc.find("extensionsRequired");
@@ -257,6 +259,48 @@ void checkGltfDocument(const std::string& path, bool binary)
                             " (refused: only data: URIs and files in the scene's folder are read)");
         }
     }
+}
+
+// tinygltf's file access for external buffers and images (URIs): only regular files inside the glTF
+// file's folder are read. tinygltf resolves URIs against the folder and then against the current
+// directory, and would otherwise follow "../", absolute paths and device files (/dev/zero never ends).
+struct GltfFolder {
+    fs::path canonical; // the folder, symlinks resolved
+};
+
+bool gltfFileExists(const std::string& path, void*)
+{
+    return isRegularFile(path);
+}
+
+std::string gltfExpandFilePath(const std::string& path, void*)
+{
+    return path; // no "~" or environment expansion: a URI names a file next to the glTF
+}
+
+bool gltfReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* userData)
+{
+    const GltfFolder& folder = *static_cast<const GltfFolder*>(userData);
+    std::error_code ec;
+    const fs::path file = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    const fs::path relative = ec ? fs::path("..") : file.lexically_relative(folder.canonical);
+    if (relative.empty() || *relative.begin() == ".." || !isRegularFile(file.string())) {
+        if (err != nullptr) *err += "refused: not a file inside the glTF file's folder";
+        return false;
+    }
+    std::ifstream in(file, std::ios::binary);
+    if (!in) {
+        if (err != nullptr) *err += "cannot open";
+        return false;
+    }
+    out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return true;
+}
+
+bool gltfRefuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
+{
+    if (err != nullptr) *err += "vplgi never writes glTF files";
+    return false;
 }
 
 // A typed window onto an accessor's elements, bounds-checked against its buffer.
@@ -1245,15 +1289,33 @@ Scene loadGltf(const std::string& path)
 {
     requireFile(path);
     const std::string ext = lowerExtension(path);
+    require(ext == ".glb" || ext == ".gltf", path + ": not a .gltf or .glb file");
+    return loadGltfFromMemory(readWholeFile(path), path);
+}
+
+Scene loadGltfFromMemory(const std::string& bytes, const std::string& path)
+{
+    const std::string ext = lowerExtension(path);
     const bool binary = ext == ".glb";
     require(binary || ext == ".gltf", path + ": not a .gltf or .glb file");
-    checkGltfDocument(path, binary);
+    // tinygltf takes the length as an unsigned int.
+    require(bytes.size() < (std::size_t{1} << 32), path + ": larger than 4 GiB");
+    checkGltfDocument(path, bytes, binary);
 
+    std::error_code ec;
+    const fs::path parent = fs::path(path).parent_path();
+    const fs::path folder = fs::absolute(parent.empty() ? fs::path(".") : parent, ec);
+    GltfFolder confined{fs::weakly_canonical(folder, ec)};
     tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({gltfFileExists, gltfExpandFilePath, gltfReadWholeFile, gltfRefuseWrite, &confined});
     tinygltf::Model model;
     std::string err, warn;
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(bytes.size()),
+                                             folder.string())
+               : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                            static_cast<unsigned int>(bytes.size()), folder.string());
     // tinygltf only warns about images it could not read: treated as errors, so that a scene never
     // loads with silently missing textures.
     if (!ok || !err.empty() || !warn.empty()) {
@@ -1275,6 +1337,11 @@ Scene loadGltf(const std::string& path)
     return scene;
 }
 
+Scene loadSceneSource(const std::string& source, const std::string& sceneFilePath)
+{
+    return loadSource(SceneFileReader(sceneFilePath), source);
+}
+
 // Scene file keys (all optional except "source"):
 //   name            string, defaults to the file stem
 //   source          "builtin:<name>" or "gltf:<path>" (relative paths are relative to the file)
@@ -1293,14 +1360,19 @@ Scene loadGltf(const std::string& path)
 SceneDescription loadSceneFile(const std::string& path)
 {
     requireFile(path);
-    const std::string text = readWholeFile(path);
+    return loadSceneFileFromText(readWholeFile(path), path);
+}
+
+SceneDescription loadSceneFileFromText(const std::string& text, const std::string& path,
+                                       const SceneSourceLoader& sourceLoader)
+{
     Json doc;
     try {
         doc = Json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
         throwJsonParseError(path, text, e);
     } catch (const nlohmann::json::exception& e) {
-        throwJsonValueError(path, e);
+        throwJsonError(path, e);
     }
 
     SceneFileReader r(path);
@@ -1312,7 +1384,8 @@ SceneDescription loadSceneFile(const std::string& path)
     if (source == nullptr) r.fail("", "needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
     SceneDescription description;
     Scene& scene = description.scene;
-    scene = loadSource(r, r.string(*source, "", "source"));
+    const std::string sourceText = r.string(*source, "", "source");
+    scene = sourceLoader ? sourceLoader(sourceText, path) : loadSceneSource(sourceText, path);
     scene.name = fs::path(path).stem().string();
     if (const Json* v = SceneFileReader::find(doc, "name")) {
         scene.name = r.string(*v, "", "name");

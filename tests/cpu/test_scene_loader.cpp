@@ -1095,3 +1095,81 @@ TEST_CASE("shared test scenes load (skipped when ../shared is absent)", "[scene_
     }
     CHECK(count >= 1);
 }
+
+TEST_CASE("a number beyond a double is invalid JSON naming the file (found by fuzzing)", "[scene_loader]")
+{
+    // nlohmann/json throws out_of_range (not parse_error) for it; it escaped the loaders, unnamed.
+    TempDir dir;
+    const std::string scene = dir.file("overflow.json");
+    writeFile(scene, R"({"source": "builtin:cornell", "lights": [{"name": "a", "intensity": 1e400}]})");
+    CHECK(errorOf([&] { vplgi::loadSceneFile(scene); }) == scene + ": invalid JSON: number overflow parsing '1e400' (numbers must be finite)");
+
+    GltfBuilder b;
+    b.doc["asset"]["minVersion"] = "2.0";
+    std::string text = b.gltfWithDataUri();
+    text.insert(text.find('{') + 1, R"("extras": -2e400,)");
+    const std::string gltf = dir.file("overflow.gltf");
+    writeFile(gltf, text);
+    CHECK(errorOf([&] { vplgi::loadGltf(gltf); }) == gltf + ": invalid JSON: number overflow parsing '-2e400' (numbers must be finite)");
+}
+
+TEST_CASE("glTF: external buffers and images are read only from the glTF file's folder", "[scene_loader]")
+{
+    TempDir dir;
+    GltfBuilder b;
+    addTriangleMesh(b);
+    b.append("nodes", {{"mesh", 0}});
+    writeFile(dir.file("outside.bin"), b.binary());
+    writeFile(dir.file("scene/sub/inside.bin"), b.binary());
+
+    SECTION("a file in a subfolder loads")
+    {
+        const std::string path = dir.file("scene/ok.gltf");
+        writeFile(path, b.gltfWithBin("sub/inside.bin"));
+        CHECK(vplgi::loadGltf(path).meshes.size() == 1);
+    }
+    SECTION("\"../\" out of the folder is refused although the file exists")
+    {
+        const std::string path = dir.file("scene/up.gltf");
+        writeFile(path, b.gltfWithBin("../outside.bin"));
+        const std::string message = errorOf([&] { vplgi::loadGltf(path); });
+        CHECK_THAT(message, Contains(path + ": "));
+        CHECK_THAT(message, Contains("refused"));
+    }
+    SECTION("a symlink out of the folder is refused; one to a device file does not hang")
+    {
+        fs::create_symlink(dir.file("outside.bin"), dir.file("scene/link.bin"));
+        const std::string path = dir.file("scene/link.gltf");
+        writeFile(path, b.gltfWithBin("link.bin"));
+        CHECK_THAT(errorOf([&] { vplgi::loadGltf(path); }), Contains("refused"));
+
+        // /dev/zero never ends: reading it would run out of memory.
+        fs::create_symlink("/dev/zero", dir.file("scene/zero.bin"));
+        const std::string zero = dir.file("scene/zero.gltf");
+        writeFile(zero, b.gltfWithBin("zero.bin"));
+        CHECK_THAT(errorOf([&] { vplgi::loadGltf(zero); }), Contains(zero + ": "));
+    }
+    SECTION("the in-memory entry points give what the files give")
+    {
+        const std::string path = dir.file("scene/ok.gltf");
+        const std::string text = b.gltfWithBin("sub/inside.bin");
+        writeFile(path, text);
+        const vplgi::Scene fromFile = vplgi::loadGltf(path);
+        const vplgi::Scene fromMemory = vplgi::loadGltfFromMemory(text, path);
+        REQUIRE(fromMemory.meshes.size() == fromFile.meshes.size());
+        CHECK(fromMemory.meshes[0].vertices.size() == fromFile.meshes[0].vertices.size());
+        CHECK(fromMemory.name == fromFile.name);
+        // The extension says which form the bytes are in.
+        CHECK(vplgi::loadGltfFromMemory(b.glb(), dir.file("scene/any.glb")).meshes.size() == 1);
+        CHECK_THAT(errorOf([&] { vplgi::loadGltfFromMemory(b.glb(), dir.file("scene/any.gltf")); }),
+                   Contains("invalid JSON"));
+
+        const std::string sceneText = R"({"source": "gltf:ok.gltf", "technique": "ir"})";
+        writeFile(dir.file("scene/s.json"), sceneText);
+        const vplgi::SceneDescription a = vplgi::loadSceneFile(dir.file("scene/s.json"));
+        const vplgi::SceneDescription c = vplgi::loadSceneFileFromText(sceneText, dir.file("scene/s.json"));
+        CHECK(c.technique == "ir");
+        CHECK(c.scene.name == a.scene.name);
+        CHECK(c.scene.meshes.size() == a.scene.meshes.size());
+    }
+}
