@@ -20,6 +20,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
@@ -157,21 +158,21 @@ const std::set<std::string>& supportedRequiredExtensions()
 }
 
 // The JSON text of a .gltf, or the JSON chunk of a .glb; empty when it cannot be found.
-std::string gltfJsonText(const std::string& bytes, bool binary)
+std::string_view gltfJsonText(const std::string& bytes, bool binary)
 {
     if (!binary) return bytes;
     // Anything that is not a well-formed GLB header yields "", which parses as invalid JSON; let
     // tinygltf describe those files instead (see checkGltfDocument).
-    if (bytes.size() < 20) return "";
+    if (bytes.size() < 20) return {};
     const auto u32 = [&](std::size_t offset) {
         std::uint32_t v = 0;
         std::memcpy(&v, bytes.data() + offset, 4); // glb is little-endian, as is every platform we build on
         return v;
     };
-    if (u32(0) != 0x46546C67u || u32(16) != 0x4E4F534Au) return ""; // "glTF", "JSON"
+    if (u32(0) != 0x46546C67u || u32(16) != 0x4E4F534Au) return {}; // "glTF", "JSON"
     const std::size_t length = std::min(u32(12), u32(8));
-    if (length > bytes.size() - 20) return "";
-    return bytes.substr(20, length);
+    if (length > bytes.size() - 20) return {};
+    return std::string_view(bytes).substr(20, length);
 }
 
 // "%2E%2E" -> "..": glTF URIs are percent-encoded (RFC 3986); checked in decoded form so that an
@@ -191,48 +192,50 @@ std::string percentDecoded(const std::string& uri)
     return out;
 }
 
-// Why an external (non-data:) URI is refused, or "" when it names a file inside the glTF's folder.
-// A scene file must not read files elsewhere on the machine (a downloaded asset naming
-// "../../home/user/.ssh/id_rsa" as a texture): absolute paths, other URI schemes and ".." steps
-// that leave the folder are refused, before tinygltf opens anything. Lexical: a symbolic link inside
-// the folder is the folder owner's choice.
-std::string uriOutsideFolderReason(const std::string& uri)
+// The one rule for external files, the buffers and images a glTF names by URI: the file, symbolic
+// links resolved, must lie inside the glTF file's folder (`folder`, canonical) and, when it exists,
+// be a regular file. A scene must not read files elsewhere on the machine (a downloaded asset naming
+// "../../home/user/.ssh/id_rsa" as a texture) nor device files (/dev/zero never ends). Returns why
+// `file` is refused, or "". Applied to every URI before tinygltf runs (checkGltfDocument, whose
+// message names the buffer or image) and again to every file tinygltf opens (gltfReadWholeFile:
+// tinygltf also searches the current directory).
+std::string fileOutsideFolderReason(const fs::path& folder, const fs::path& file)
 {
-    const std::string path = percentDecoded(uri);
+    std::error_code ec;
+    const fs::path resolved = fs::weakly_canonical(file, ec);
+    const fs::path relative = ec ? fs::path("..") : resolved.lexically_relative(folder);
+    if (relative.empty() || *relative.begin() == "..") return "points outside the scene's folder";
+    if (fs::exists(resolved, ec) && !fs::is_regular_file(resolved, ec)) return "is not a regular file";
+    return "";
+}
+
+// Why an external (non-data:) URI is refused, or "": only relative paths (percent-decoded, "\\" read
+// as "/"), and then fileOutsideFolderReason.
+std::string uriOutsideFolderReason(const fs::path& folder, const std::string& uri)
+{
+    std::string path = percentDecoded(uri);
     if (path.empty()) return "is empty";
     const std::size_t colon = path.find(':');
     const std::size_t slash = path.find_first_of("/\\");
     if (colon != std::string::npos && (slash == std::string::npos || colon < slash)) return "is not a relative path";
     if (path[0] == '/' || path[0] == '\\') return "is an absolute path";
-    int depth = 0;
-    std::size_t start = 0;
-    while (start <= path.size()) {
-        std::size_t end = path.find_first_of("/\\", start);
-        if (end == std::string::npos) end = path.size();
-        const std::string part = path.substr(start, end - start);
-        if (part == "..") {
-            if (--depth < 0) return "points outside the scene's folder";
-        } else if (!part.empty() && part != ".") {
-            ++depth;
-        }
-        start = end + 1;
-    }
-    return "";
+    std::replace(path.begin(), path.end(), '\\', '/');
+    return fileOutsideFolderReason(folder, folder / path);
 }
 
 // Checks on the raw JSON, before tinygltf runs: an unsupported required extension often also makes
 // tinygltf fail (KHR_texture_basisu images cannot be decoded), and its name is the message the user
 // needs; external files outside the scene's folder must be refused before tinygltf opens them.
-void checkGltfDocument(const std::string& path, const std::string& bytes, bool binary)
+void checkGltfDocument(const std::string& path, const std::string& bytes, bool binary, const fs::path& folder)
 {
-    const std::string text = gltfJsonText(bytes, binary);
+    const std::string_view text = gltfJsonText(bytes, binary);
     if (binary && text.empty()) return;
     nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(text);
+        doc = nlohmann::json::parse(text.begin(), text.end());
     } catch (const nlohmann::json::parse_error& e) {
         // Reported like a scene file; in a .glb the position is within the JSON chunk.
-        throwJsonParseError(binary ? path + ": JSON chunk" : path, text, e);
+        throwJsonParseError(binary ? path + ": JSON chunk" : path, std::string(text), e);
     } catch (const nlohmann::json::exception& e) {
         throwJsonError(binary ? path + ": JSON chunk" : path, e);
     }
@@ -253,7 +256,7 @@ void checkGltfDocument(const std::string& path, const std::string& bytes, bool b
             if (uri == item.end() || !uri->is_string()) continue;
             const std::string uriText = uri->get<std::string>();
             if (uriText.rfind("data:", 0) == 0) continue;
-            const std::string reason = uriOutsideFolderReason(uriText);
+            const std::string reason = uriOutsideFolderReason(folder, uriText);
             if (!reason.empty())
                 throw Error(path + ": " + element + " " + std::to_string(i) + ": uri \"" + uriText + "\" " + reason +
                             " (refused: only data: URIs and files in the scene's folder are read)");
@@ -261,9 +264,8 @@ void checkGltfDocument(const std::string& path, const std::string& bytes, bool b
     }
 }
 
-// tinygltf's file access for external buffers and images (URIs): only regular files inside the glTF
-// file's folder are read. tinygltf resolves URIs against the folder and then against the current
-// directory, and would otherwise follow "../", absolute paths and device files (/dev/zero never ends).
+// tinygltf's file access for external buffers and images (URIs): fileOutsideFolderReason on every
+// file it opens.
 struct GltfFolder {
     fs::path canonical; // the folder, symlinks resolved
 };
@@ -282,10 +284,11 @@ bool gltfReadWholeFile(std::vector<unsigned char>* out, std::string* err, const 
 {
     const GltfFolder& folder = *static_cast<const GltfFolder*>(userData);
     std::error_code ec;
-    const fs::path file = fs::weakly_canonical(fs::absolute(path, ec), ec);
-    const fs::path relative = ec ? fs::path("..") : file.lexically_relative(folder.canonical);
-    if (relative.empty() || *relative.begin() == ".." || !isRegularFile(file.string())) {
-        if (err != nullptr) *err += "refused: not a file inside the glTF file's folder";
+    const fs::path file = fs::absolute(path, ec);
+    std::string reason = ec ? "cannot be resolved" : fileOutsideFolderReason(folder.canonical, file);
+    if (reason.empty() && !isRegularFile(file.string())) reason = "does not exist";
+    if (!reason.empty()) {
+        if (err != nullptr) *err += path + " " + reason + " (refused: only files in the scene's folder are read)";
         return false;
     }
     std::ifstream in(file, std::ios::binary);
@@ -1300,12 +1303,12 @@ Scene loadGltfFromMemory(const std::string& bytes, const std::string& path)
     require(binary || ext == ".gltf", path + ": not a .gltf or .glb file");
     // tinygltf takes the length as an unsigned int.
     require(bytes.size() < (std::size_t{1} << 32), path + ": larger than 4 GiB");
-    checkGltfDocument(path, bytes, binary);
-
     std::error_code ec;
     const fs::path parent = fs::path(path).parent_path();
     const fs::path folder = fs::absolute(parent.empty() ? fs::path(".") : parent, ec);
     GltfFolder confined{fs::weakly_canonical(folder, ec)};
+    checkGltfDocument(path, bytes, binary, confined.canonical);
+
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({gltfFileExists, gltfExpandFilePath, gltfReadWholeFile, gltfRefuseWrite, &confined});
     tinygltf::Model model;

@@ -38,7 +38,6 @@ Limits queryLimits()
 {
     Limits limits;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limits.maxTextureSize);
-    glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &limits.maxCubeMapTextureSize);
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &limits.maxArrayTextureLayers);
     GLint64 block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
@@ -50,21 +49,6 @@ Limits queryLimits()
 int clampToLimit(int value, long long limit, const std::string& what, const std::string& why)
 {
     return clampTo(value, limit, what, why);
-}
-
-int clampTextureSize(int value, const std::string& what)
-{
-    return clampTo(value, queryLimits().maxTextureSize, what, "GL_MAX_TEXTURE_SIZE");
-}
-
-int clampCubeMapSize(int value, const std::string& what)
-{
-    return clampTo(value, queryLimits().maxCubeMapTextureSize, what, "GL_MAX_CUBE_MAP_TEXTURE_SIZE");
-}
-
-int clampArrayLayers(int value, const std::string& what)
-{
-    return clampTo(value, queryLimits().maxArrayTextureLayers, what, "GL_MAX_ARRAY_TEXTURE_LAYERS");
 }
 
 int clampStorageCount(int value, std::size_t elementBytes, const std::string& what)

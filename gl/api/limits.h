@@ -16,7 +16,6 @@ namespace vplgi::gl {
 
 struct Limits {
     int maxTextureSize = 0;             // GL_MAX_TEXTURE_SIZE [texels]
-    int maxCubeMapTextureSize = 0;      // GL_MAX_CUBE_MAP_TEXTURE_SIZE [texels]
     int maxArrayTextureLayers = 0;      // GL_MAX_ARRAY_TEXTURE_LAYERS
     long long maxStorageBlockSize = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE [bytes]
     int maxShaderLoopIterations = 0;    // per invocation, over all its loops; 0: no known limit
@@ -30,12 +29,9 @@ constexpr int kLlvmpipeLoopIterations = 65535;
 
 // Each returns `value` when the implementation allows it, else the largest value it allows, and
 // then prints one line "vplgi: warning: <what> = <value> ... clamped to <n>" (once per what/value).
-// `what` names the parameter ("vsgl.count", "shadow.mapSize").
-int clampTextureSize(int value, const std::string& what);
-// The same with a limit derived by the caller; `why` names it ("GL_MAX_TEXTURE_SIZE / layers").
+// `what` names the parameter ("vsgl.count", "rsm.size").
+// `limit` is derived by the caller; `why` names it ("GL_MAX_TEXTURE_SIZE / layers").
 int clampToLimit(int value, long long limit, const std::string& what, const std::string& why);
-int clampCubeMapSize(int value, const std::string& what);
-int clampArrayLayers(int value, const std::string& what);
 // A count of elements of `elementBytes` each in one shader storage block.
 int clampStorageCount(int value, std::size_t elementBytes, const std::string& what);
 // A count a shader iterates over per invocation (`iterationsPerUnit` loop iterations each).

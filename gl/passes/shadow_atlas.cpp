@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "../api/debug.h"
+#include "../api/limits.h"
 #include "core/util/error.h"
 #include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
@@ -81,10 +82,8 @@ ShadowAtlasLayout ShadowAtlas::chooseLayout(const std::string& name, const Shado
 ShadowAtlas::ShadowAtlas(const gl::ShaderLoader& shaders, std::string name, const ShadowAtlasParams& params)
     : mName(std::move(name)), mParams(params)
 {
-    GLint maxTextureSize = 0, maxLayers = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    mLayout = chooseLayout(mName, mParams, maxTextureSize, maxLayers);
+    const gl::Limits limits = gl::queryLimits();
+    mLayout = chooseLayout(mName, mParams, limits.maxTextureSize, limits.maxArrayTextureLayers);
     mProgram = loadProgram(shaders, "shadow atlas " + mName);
 
     gl::SamplerDesc samplerDesc;
@@ -217,15 +216,13 @@ void ShadowAtlas::bindForReading() const
 gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slots, int levels,
                                    ShadowAtlasLayout& layout)
 {
-    GLint maxTextureSize = 0, maxLayers = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    const gl::Limits limits = gl::queryLimits();
     // 4 bytes per texel as the shadow atlas's DEPTH32F: its memory estimate holds for level 0.
     ShadowAtlasParams params;
     params.tileSize = mapSize;
     params.slots = slots;
     params.viewsPerSlot = 1;
-    layout = ShadowAtlas::chooseLayout(name, params, maxTextureSize, maxLayers);
+    layout = ShadowAtlas::chooseLayout(name, params, limits.maxTextureSize, limits.maxArrayTextureLayers);
 
     gl::TextureDesc desc;
     desc.target = GL_TEXTURE_2D_ARRAY;

@@ -1,8 +1,8 @@
 #include "shadow_pass.h"
 
 #include <algorithm>
-#include <cstdio>
 
+#include "../api/limits.h"
 #include "core/util/params.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/light_view.h"
@@ -73,12 +73,11 @@ void ShadowPass::render(const GpuScene& scene, DirectLightSet& lights, const Sha
 
 void ShadowPass::renderCubes(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params, float near)
 {
-    GLint maxLayers = 0;
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-    const int cubeCount = std::min<int>(static_cast<int>(lights.points.size()), maxLayers / 6);
-    if (cubeCount < static_cast<int>(lights.points.size()))
-        std::fprintf(stderr, "warning: %zu point emitters, only %d get shadow cube maps (GL_MAX_ARRAY_TEXTURE_LAYERS)\n",
-                     lights.points.size(), cubeCount);
+    // The cube faces are layers of one array texture: the emitters beyond its layer limit / 6 are
+    // unshadowed (with one warning).
+    const int cubeCount = gl::clampToLimit(static_cast<int>(lights.points.size()),
+                                           gl::queryLimits().maxArrayTextureLayers / 6, "shadowed point emitters",
+                                           "GL_MAX_ARRAY_TEXTURE_LAYERS / 6 cube faces");
 
     // Point emitters: cube faces, layer = emitter * 6 + face.
     std::vector<glm::mat4> cubeMatrices;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <sys/stat.h>
 #include <nlohmann/json.hpp>
 
 #include "core/scene/scene_loader.h"
@@ -1136,18 +1137,27 @@ TEST_CASE("glTF: external buffers and images are read only from the glTF file's 
         CHECK_THAT(message, Contains(path + ": "));
         CHECK_THAT(message, Contains("refused"));
     }
-    SECTION("a symlink out of the folder is refused; one to a device file does not hang")
+    SECTION("a symlink out of the folder is refused, a device file or a pipe does not hang")
     {
         fs::create_symlink(dir.file("outside.bin"), dir.file("scene/link.bin"));
         const std::string path = dir.file("scene/link.gltf");
         writeFile(path, b.gltfWithBin("link.bin"));
-        CHECK_THAT(errorOf([&] { vplgi::loadGltf(path); }), Contains("refused"));
+        CHECK_THAT(errorOf([&] { vplgi::loadGltf(path); }),
+                   Contains(path + ": buffer 0: uri \"link.bin\" points outside the scene's folder (refused"));
 
         // /dev/zero never ends: reading it would run out of memory.
         fs::create_symlink("/dev/zero", dir.file("scene/zero.bin"));
         const std::string zero = dir.file("scene/zero.gltf");
         writeFile(zero, b.gltfWithBin("zero.bin"));
-        CHECK_THAT(errorOf([&] { vplgi::loadGltf(zero); }), Contains(zero + ": "));
+        CHECK_THAT(errorOf([&] { vplgi::loadGltf(zero); }),
+                   Contains(zero + ": buffer 0: uri \"zero.bin\" points outside the scene's folder (refused"));
+
+        // A named pipe inside the folder: opening it would wait for a writer forever.
+        REQUIRE(mkfifo(dir.file("scene/pipe.bin").c_str(), 0600) == 0);
+        const std::string pipe = dir.file("scene/pipe.gltf");
+        writeFile(pipe, b.gltfWithBin("pipe.bin"));
+        CHECK_THAT(errorOf([&] { vplgi::loadGltf(pipe); }),
+                   Contains(pipe + ": buffer 0: uri \"pipe.bin\" is not a regular file (refused"));
     }
     SECTION("the in-memory entry points give what the files give")
     {
