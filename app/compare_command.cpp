@@ -106,7 +106,8 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                  "65536");
     parser.value("against", "T",
                  "also compare every technique's image with that of T, one of --techniques: the mean and 99.9th "
-                 "percentile of |A - B| after the fixed-exposure tone map (LightSkin+BRSM Fig. 3 and 6)");
+                 "percentile of |A - B| after the fixed-exposure tone map (LightSkin+BRSM Fig. 3 and 6), and the ratio of "
+                 "|E'| to T's with a 95% bootstrap interval over the tracked pixels");
     parser.value("out", "DIR", "output directory (created)", "out/compare");
     parser.value("cache", "DIR", "reference cache directory ($VPLGI_CACHE_DIR or out/reference-cache)");
     if (!parser.parse(args)) return std::nullopt;
@@ -117,7 +118,7 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     require(!o.techniques.empty(), "--techniques needs at least one technique");
     o.animation = animationOptions(parser, 100000);
     o.size = imageSize(parser, 8, 8192);
-    o.trackedCount = parser.getInt("tracked", 1, 64);
+    o.trackedCount = parser.getInt("tracked", 1, kMaxTrackedPixels);
     const std::string choice = parser.get("tracked-choice");
     require(choice == "indirect" || choice == "grid",
             "--tracked-choice \"" + choice + "\" must be indirect or grid");
@@ -395,6 +396,12 @@ CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std:
     report.against = o.against;
     for (const TechniqueRun& run : runs)
         report.techniques.push_back(summarize(run, loop.referenceTracked, exposure, run.settings));
+    if (!o.against.empty()) {
+        const auto base = std::find_if(report.techniques.begin(), report.techniques.end(),
+                                       [&](const CompareTechniqueResult& t) { return t.name == o.against; });
+        for (CompareTechniqueResult& t : report.techniques)
+            t.againstEPrime = temporalDerivativeRatio(t.temporal, base->temporal);
+    }
     return report;
 }
 

@@ -1,7 +1,7 @@
-#include <cctype>
 #include "report.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -279,12 +279,15 @@ std::string compareTemporalSummary(const CompareReport& report)
              << formatNumber(t.temporal.meanAbsError) << "  |E'| " << formatNumber(t.temporal.meanAbsDerivative) << "\n";
     text << "  " << noiseCheckText(report) << "\n";
     if (!report.against.empty()) {
-        text << "difference from " << report.against << " (mean |A - B| after the tone map, 99.9th percentile):\n";
+        text << "difference from " << report.against << " (mean |A - B| after the tone map, 99.9th percentile;"
+             << " |E'| / " << report.against << "'s |E'| with its 95% interval over the tracked pixels):\n";
         for (const CompareTechniqueResult& t : report.techniques)
             if (t.name != report.against)
                 text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": "
                      << formatNumber(t.againstErrors.meanAbsToneMapped) << "  "
-                     << formatNumber(t.againstErrors.p999AbsToneMapped) << "\n";
+                     << formatNumber(t.againstErrors.p999AbsToneMapped) << "  |E'| ratio "
+                     << formatNumber(t.againstEPrime.ratio, 3) << " [" << formatNumber(t.againstEPrime.low, 3) << ", "
+                     << formatNumber(t.againstEPrime.high, 3) << "]\n";
     }
     return text.str();
 }
@@ -293,7 +296,8 @@ std::string compareCsv(const CompareReport& report)
 {
     std::ostringstream csv;
     csv << "technique,frames,mean_abs_tonemapped,p999_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
-           "temporal_abs_e_prime,median_frame_ms,against,against_mean_abs_tonemapped,against_p999_abs_tonemapped,settings\n";
+           "temporal_abs_e_prime,median_frame_ms,against,against_mean_abs_tonemapped,against_p999_abs_tonemapped,"
+           "against_abs_e_prime_ratio,against_abs_e_prime_ratio_low,against_abs_e_prime_ratio_high,settings\n";
     for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
         csv << t.name << "," << report.frames << "," << imageMetric(report, mean.meanAbsToneMapped, "") << ","
@@ -301,9 +305,10 @@ std::string compareCsv(const CompareReport& report)
             << imageMetric(report, mean.meanRelativeLuminance, "") << "," << t.temporal.meanAbsError << ","
             << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << report.against << ",";
         if (!report.against.empty())
-            csv << t.againstErrors.meanAbsToneMapped << "," << t.againstErrors.p999AbsToneMapped;
+            csv << t.againstErrors.meanAbsToneMapped << "," << t.againstErrors.p999AbsToneMapped << ","
+                << t.againstEPrime.ratio << "," << t.againstEPrime.low << "," << t.againstEPrime.high;
         else
-            csv << ",";
+            csv << ",,,,";
         csv << "," << t.settings << "\n";
     }
     return csv.str();
@@ -342,7 +347,10 @@ std::string compareJson(const CompareReport& report)
         if (!report.against.empty())
             json << ", \"against\": {\"technique\": \"" << report.against
                  << "\", \"meanAbsToneMapped\": " << t.againstErrors.meanAbsToneMapped
-                 << ", \"p999AbsToneMapped\": " << t.againstErrors.p999AbsToneMapped << "}";
+                 << ", \"p999AbsToneMapped\": " << t.againstErrors.p999AbsToneMapped
+                 << ", \"absEPrimeRatio\": " << t.againstEPrime.ratio
+                 << ", \"absEPrimeRatioLow\": " << t.againstEPrime.low
+                 << ", \"absEPrimeRatioHigh\": " << t.againstEPrime.high << "}";
         json << "}" << (i + 1 < report.techniques.size() ? "," : "") << "\n";
     }
     json << "  ]\n}\n";
@@ -389,7 +397,9 @@ std::string metricsTableRows(const CompareReport& report)
               << formatNumber(t.temporal.meanAbsDerivative) << "</td><td>" << formatNumber(t.medianFrameMs, 4);
         if (!report.against.empty())
             table << "</td><td>" << formatNumber(t.againstErrors.meanAbsToneMapped) << "</td><td>"
-                  << formatNumber(t.againstErrors.p999AbsToneMapped);
+                  << formatNumber(t.againstErrors.p999AbsToneMapped) << "</td><td>"
+                  << formatNumber(t.againstEPrime.ratio, 3) << " [" << formatNumber(t.againstEPrime.low, 3) << ", "
+                  << formatNumber(t.againstEPrime.high, 3) << "]";
         table << "</td></tr>\n";
     }
     return table.str();
@@ -451,7 +461,9 @@ std::string compareHtml(const CompareReport& report)
          << "<th>mean luminance bias</th><th>avg |E| tracked</th><th>avg |E'| tracked (SMCIR eq. 10)</th>"
          << "<th>median frame [ms]</th>"
          << (report.against.empty() ? std::string()
-                                    : "<th>mean |A - " + htmlEscape(report.against) + "| (tone-mapped)</th><th>99.9th pct</th>")
+                                    : "<th>mean |A - " + htmlEscape(report.against) + "| (tone-mapped)</th><th>99.9th pct</th>"
+                                      "<th>|E'| / " + htmlEscape(report.against) +
+                                          "'s [95% interval over the tracked pixels]</th>")
          << "</tr>\n"
          << metricsTableRows(report) << "</table>\n<p>All numbers: <a href=\"metrics.csv\">metrics.csv</a>, "
          << "<a href=\"metrics.json\">metrics.json</a>. Frame times are on this machine's OpenGL implementation.</p>\n";
@@ -461,7 +473,9 @@ std::string compareHtml(const CompareReport& report)
         html << "<h2>Last frame (" << last << ")</h2>\n" << frameFigures(report, last);
     }
     html << "<h2>Luminance over time at tracked pixels</h2>\n";
-    for (std::size_t j = 0; j < report.trackedPixels.size(); ++j)
+    if (report.trackedPixels.size() > kPlottedTrackedPixels)
+        html << "<p>The first " << kPlottedTrackedPixels << " of " << report.trackedPixels.size() << ".</p>\n";
+    for (std::size_t j = 0; j < std::min(report.trackedPixels.size(), kPlottedTrackedPixels); ++j)
         html << "<img src=\"" << compareTrackedPlotName(j) << "\" alt=\"luminance over time at tracked pixel " << j
              << "\">\n";
     html << "\n</body></html>\n";
@@ -470,7 +484,7 @@ std::string compareHtml(const CompareReport& report)
 
 void writeCompareReport(const std::string& directory, const CompareReport& report)
 {
-    for (std::size_t j = 0; j < report.trackedPixels.size(); ++j)
+    for (std::size_t j = 0; j < std::min(report.trackedPixels.size(), kPlottedTrackedPixels); ++j)
         writeTextFile(directory + "/" + compareTrackedPlotName(j), compareTrackedPlot(report, j));
     writeTextFile(directory + "/metrics.csv", compareCsv(report));
     writeTextFile(directory + "/metrics.json", compareJson(report));

@@ -61,6 +61,7 @@ struct CompareTechniqueResult {
     std::vector<std::vector<double>> tracked; // [frame][pixel] luminance
     std::string settings;                     // the --set overrides its session used, "key=value ..."
     ImageErrors againstErrors;                // against CompareReport::against's image, averaged over frames
+    RatioInterval againstEPrime;              // |E'| / the against technique's |E'|, with its 95% interval
 };
 
 // Everything the compare report shows besides the images (written while rendering, named by
@@ -106,7 +107,10 @@ bool compareKeepsImages(int frame, int frames);
 
 std::string compareCsv(const CompareReport& report);
 std::string compareJson(const CompareReport& report);
-// Luminance over time at one tracked pixel, the reference dashed (SMCIR Fig. 7).
+// Luminance over time at one tracked pixel, the reference dashed (SMCIR Fig. 7): made for the first
+// kPlottedTrackedPixels tracked pixels (every tracked pixel's metrics are in the tables).
+constexpr int kMaxTrackedPixels = 1024;
+constexpr std::size_t kPlottedTrackedPixels = 16;
 std::string compareTrackedPlot(const CompareReport& report, std::size_t pixel);
 std::string compareTrackedPlotName(std::size_t pixel);
 std::string compareHtml(const CompareReport& report);

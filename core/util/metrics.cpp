@@ -5,6 +5,7 @@
 
 #include "glsl/shared/tonemap.h"
 #include "core/util/error.h"
+#include "core/util/random.h"
 
 namespace vplgi {
 
@@ -109,6 +110,7 @@ TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
     TemporalErrors t;
     std::size_t countE = 0, countD = 0;
     std::vector<double> previous;
+    t.pixelAbsDerivative.assign(method[0].size(), 0.0);
     for (std::size_t f = 0; f < method.size(); ++f) {
         require(method[f].size() == reference[f].size(), "temporal errors: tracked pixel counts differ");
         std::vector<double> current(method[f].size());
@@ -118,6 +120,7 @@ TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
             ++countE;
             if (f > 0) {
                 t.meanAbsDerivative += std::abs(current[j] - previous[j]);
+                t.pixelAbsDerivative[j] += std::abs(current[j] - previous[j]) / static_cast<double>(method.size() - 1);
                 ++countD;
             }
         }
@@ -126,6 +129,43 @@ TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
     if (countE) t.meanAbsError /= static_cast<double>(countE);
     if (countD) t.meanAbsDerivative /= static_cast<double>(countD);
     return t;
+}
+
+RatioInterval temporalDerivativeRatio(const TemporalErrors& a, const TemporalErrors& b, int resamples,
+                                      std::uint64_t seed)
+{
+    const std::vector<double>& x = a.pixelAbsDerivative;
+    const std::vector<double>& y = b.pixelAbsDerivative;
+    require(x.size() == y.size(), "|E'| ratio: tracked pixel counts differ");
+    require(resamples > 0, "|E'| ratio: resamples must be positive");
+    const auto ratioOf = [](double sumX, double sumY) { return sumY > 0.0 ? sumX / sumY : 0.0; };
+    RatioInterval r;
+    if (x.empty()) return r;
+    double sumX = 0.0, sumY = 0.0;
+    for (std::size_t j = 0; j < x.size(); ++j) {
+        sumX += x[j];
+        sumY += y[j];
+    }
+    r.ratio = ratioOf(sumX, sumY);
+    Pcg32 rng(mix64(seed), 0x5eedu);
+    std::vector<double> ratios(static_cast<std::size_t>(resamples));
+    const auto n = static_cast<std::uint32_t>(x.size());
+    for (double& ratio : ratios) {
+        double rx = 0.0, ry = 0.0;
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const std::uint32_t j = rng.below(n);
+            rx += x[j];
+            ry += y[j];
+        }
+        ratio = ratioOf(rx, ry);
+    }
+    std::sort(ratios.begin(), ratios.end());
+    const auto at = [&](double q) {
+        return ratios[static_cast<std::size_t>(std::lround(q * static_cast<double>(ratios.size() - 1)))];
+    };
+    r.low = at(0.025);
+    r.high = at(0.975);
+    return r;
 }
 
 std::vector<glm::ivec2> trackedPixels(int width, int height, int count)

@@ -4,6 +4,7 @@
 // log-average), Reinhard on luminance: T(Y) = eY / (1 + eY), so |E| is deterministic and in [0, 1].
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -38,10 +39,25 @@ ImageRGBA8 errorHeatMap(const ImageRGBA32F& method, const ImageRGBA32F& referenc
 struct TemporalErrors {
     double meanAbsError = 0.0;      // average |E| over all frames and tracked pixels
     double meanAbsDerivative = 0.0; // average |E'| over frames 1..T-1 and tracked pixels
+    std::vector<double> pixelAbsDerivative; // per tracked pixel: average |E'| over frames 1..T-1
 };
 // `method[t][j]` and `reference[t][j]`: linear luminance at tracked pixel j in frame t.
 TemporalErrors temporalErrors(const std::vector<std::vector<double>>& method,
                               const std::vector<std::vector<double>>& reference, double exposure);
+
+// A ratio of two methods' average |E'| at the same tracked pixels, a / b, with a 95% interval: a
+// claim such as "|E'| <= 0.5x the other's" rests on a handful of pixels (SMCIR tracks 8), and the
+// interval says whether they can decide it. Paired percentile bootstrap over the tracked pixels
+// (each resample draws pixels with replacement and takes both methods' values at them; frames
+// stay together, as a pixel's frames are not independent). Deterministic for a seed. Not in
+// SMCIR, which reports the averages alone.
+struct RatioInterval {
+    double ratio = 0.0; // mean a / mean b over the tracked pixels (0 when b's mean is 0)
+    double low = 0.0;   // 2.5th percentile of the resampled ratios
+    double high = 0.0;  // 97.5th percentile
+};
+RatioInterval temporalDerivativeRatio(const TemporalErrors& a, const TemporalErrors& b, int resamples = 10000,
+                                      std::uint64_t seed = 1);
 
 // Evenly spread tracked pixels (deterministic): a jittered grid of `count` pixels away from borders.
 std::vector<glm::ivec2> trackedPixels(int width, int height, int count);

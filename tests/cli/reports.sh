@@ -65,6 +65,29 @@ assert d["techniques"][0]["temporalAbsEPrime"] >= 0
 PY
 echo "compare: one reference per animated frame"
 
+# --against: the |E'| ratio with its bootstrap interval over the tracked pixels. The ratio must be
+# the ratio of the two techniques' |E'| columns (a consistency check of the plumbing: the interval's
+# statistics are tested in tests/cpu/test_metrics.cpp); against itself it is exactly 1.
+"$vplgi" compare --scene "$here/scenes/maze.json" --techniques 'direct,ir[ir.vplCount=64]' --frames 3 --width 32 \
+  --height 24 --spp 0 --tracked 20 --tracked-choice grid --reference-spp 64 --against direct --cache "$cache" \
+  --out "$work/ratio" > "$work/r.log" 2>&1
+grep -q "|E'| ratio" "$work/r.log" || { echo "FAIL: no |E'| ratio in the summary"; cat "$work/r.log"; exit 1; }
+python3 - "$work/ratio/metrics.json" "$work/ratio/metrics.csv" <<'PY'
+import csv, json, sys
+d = json.load(open(sys.argv[1]))
+assert len(d["tracked"]["pixels"]) == 20, d["tracked"]
+base, ir = d["techniques"]
+assert base["against"]["absEPrimeRatio"] == 1.0, base
+assert base["against"]["absEPrimeRatioLow"] == 1.0 and base["against"]["absEPrimeRatioHigh"] == 1.0, base
+r = ir["against"]
+assert base["temporalAbsEPrime"] > 0, base
+assert abs(r["absEPrimeRatio"] - ir["temporalAbsEPrime"] / base["temporalAbsEPrime"]) <= 1e-5 * r["absEPrimeRatio"], r
+assert r["absEPrimeRatioLow"] <= r["absEPrimeRatio"] <= r["absEPrimeRatioHigh"], r
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert abs(float(rows[1]["against_abs_e_prime_ratio"]) - r["absEPrimeRatio"]) <= 1e-5 * r["absEPrimeRatio"], rows[1]
+PY
+echo "compare: --against gives the |E'| ratio and its interval"
+
 # Against an indirect reference, a technique is judged by its indirect part: direct has none.
 "$vplgi" compare --scene cornell --techniques direct --reference-mode indirect --width 24 --height 24 --spp 4 --reference-spp 64 \
   --cache "$cache" --out "$work/ind" > "$work/i.log" 2>&1
