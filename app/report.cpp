@@ -314,6 +314,25 @@ std::string compareCsv(const CompareReport& report)
     return csv.str();
 }
 
+namespace {
+
+// [frame][tracked pixel] linear luminance as nested JSON arrays (for one's own temporal analysis).
+std::string trackedSeriesJson(const std::vector<std::vector<double>>& series)
+{
+    std::ostringstream json;
+    json.precision(9);
+    json << "[";
+    for (std::size_t f = 0; f < series.size(); ++f) {
+        json << (f ? ", [" : "[");
+        for (std::size_t j = 0; j < series[f].size(); ++j) json << (j ? ", " : "") << series[f][j];
+        json << "]";
+    }
+    json << "]";
+    return json.str();
+}
+
+} // namespace
+
 std::string compareJson(const CompareReport& report)
 {
     std::ostringstream json;
@@ -331,7 +350,8 @@ std::string compareJson(const CompareReport& report)
          << ", \"referenceAbsE\": " << report.referenceSelf.meanAbsError
          << ", \"referenceAbsEPrime\": " << report.referenceSelf.meanAbsDerivative
          << ", \"noiseCheckApplies\": " << (check.applicable ? "true" : "false")
-         << ", \"noiseCheckHolds\": " << (check.holds ? "true" : "false") << "},\n  \"techniques\": [\n";
+         << ", \"noiseCheckHolds\": " << (check.holds ? "true" : "false")
+         << ",\n    \"referenceLuminance\": " << trackedSeriesJson(report.referenceTracked) << "},\n  \"techniques\": [\n";
     for (std::size_t i = 0; i < report.techniques.size(); ++i) {
         const CompareTechniqueResult& t = report.techniques[i];
         const ImageErrors& mean = t.meanErrors;
@@ -343,7 +363,8 @@ std::string compareJson(const CompareReport& report)
              << ", \"meanLuminanceBias\": " << imageMetric(report, mean.meanRelativeLuminance, "null")
              << ", \"temporalAbsE\": " << t.temporal.meanAbsError
              << ", \"temporalAbsEPrime\": " << t.temporal.meanAbsDerivative
-             << ", \"medianFrameMs\": " << t.medianFrameMs;
+             << ", \"medianFrameMs\": " << t.medianFrameMs
+             << ",\n     \"trackedLuminance\": " << trackedSeriesJson(t.tracked);
         if (!report.against.empty())
             json << ", \"against\": {\"technique\": \"" << report.against
                  << "\", \"meanAbsToneMapped\": " << t.againstErrors.meanAbsToneMapped

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "../api/debug.h"
+#include "../api/limits.h"
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "glsl/shared/bindings.h"
@@ -158,18 +159,34 @@ void VPLTechnique::update(const FrameContext& frame)
 void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target)
 {
     const VPLSet& set = *mRendered;
+    const int tile = mRender.shading == VPLRenderParams::Exhaustive ? 1 : std::max(mRender.interleaveTile, 1);
+    // The shading pass reads every slot from one storage block and visits every tile^2-th slot per
+    // pixel in one loop: a GL implementation may hold fewer slots in a block, and llvmpipe ends a
+    // shader invocation's loops after 65535 iterations (gl/api/limits.h). Past either limit only
+    // the first `shaded` slots are uploaded and shaded, n counting the valid VPLs among them: a
+    // subset of the set, the same expected image with more variance, with one warning (not
+    // silently darker by the VPLs the loop never reached).
+    int shaded = static_cast<int>(set.slots.size());
+    if (mRender.visibility != VPLRenderParams::RayTraced) {
+        const int classes = tile * tile;
+        const std::string what = prefix() + ".vplCount";
+        shaded = gl::clampStorageCount(shaded, sizeof(shared::GpuVPL), what);
+        const int perPixel = gl::clampShaderLoopCount((shaded + classes - 1) / classes,
+                                                      what + " / " + std::to_string(classes) + " per pixel");
+        shaded = std::min(shaded, perPixel * classes);
+    }
     // 1. Every slot's VPL (48 bytes each: re-uploading all is cheaper than tracking them).
-    std::vector<shared::GpuVPL> gpu(set.slots.size());
-    for (std::size_t i = 0; i < set.slots.size(); ++i) {
+    std::vector<shared::GpuVPL> gpu(static_cast<std::size_t>(shaded));
+    int validCount = 0;
+    for (std::size_t i = 0; i < gpu.size(); ++i) {
         const VPL& vpl = set.slots[i];
         const bool valid = vpl.valid && vpl.density > 0.0f;
+        validCount += vpl.valid ? 1 : 0; // n counts valid slots (VPLSet::validCount), density 0 included
         gpu[i].positionValid = glm::vec4(vpl.position, valid ? 1.0f : 0.0f);
         gpu[i].normal = glm::vec4(vpl.normal, 0.0f);
         gpu[i].intensity = glm::vec4(valid ? vpl.intensity() : glm::vec3(0.0f), 0.0f);
     }
     gl::uploadVector(mVPLBuffer, std::string(name()) + " VPLs", gpu);
-    const int validCount = static_cast<int>(set.validCount());
-    const int tile = mRender.shading == VPLRenderParams::Exhaustive ? 1 : std::max(mRender.interleaveTile, 1);
 
     mInterleaved.resize(frame.width, frame.height);
     mFacesRendered = 0;

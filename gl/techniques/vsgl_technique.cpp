@@ -19,6 +19,11 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLi
     if (!pointLights) {
         v.field(p + ".smoothness", smoothness, 1e-3f, 1e6f,
                 "k: the footprints of the N lights cover the RSM k times; picks the mip level (section 3.2; 4)");
+        v.choice(p + ".footprint", footprint, {"texel", "cell"},
+                 "each light's mip level and flux: texel, the paper's reading (h = 1/2 log2(k / (N P_j)), flux "
+                 "Phi_h / (N P_j)); cell (not in the paper): the coarsest mip cell with at most k expected draws, "
+                 "flux Phi_h / (N P_h) over the same footprint: no bias from footprints of varying size "
+                 "(docs/vsgl.md)");
         v.field(p + ".biasAlpha", biasAlpha, 0.0f, 1e6f,
                 "alpha of the consistent bias reduction (section 3.3; Fig. 6: 0.001); 0 = keep the SG approximation");
     } else {
@@ -151,6 +156,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
             desc.format = GL_R32F;
             desc.width = size * layers;
             desc.height = size;
+            desc.levels = mRSM->levelCount(); // box mips within one layer (vsgl.footprint = cell)
             mImportance = gl::Texture("BRSM importance", desc);
         }
         bindRSMLayout(mRSM->target(), false);
@@ -166,6 +172,12 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         const std::uint32_t seed = mParams.animateSeed ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
                                                        : mParams.seed;
         mSampler->sample(mImportance, mCount, seed, NextRead::StorageBuffer);
+        const bool cells = !mPointLights && mParams.footprint == VSGLParams::Cell;
+        if (cells) {
+            // The cells' probabilities: 2x2 means up the chain (power-of-two layers: no cell straddles two).
+            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+            glGenerateTextureMipmap(mImportance.id());
+        }
     }
     {
         gl::PassTimer::Scope scope(frame.timer, "VPL/VSGL generation");
@@ -181,9 +193,14 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uLevels", mRSM->levelCount());
         generate.set("uLevel", 0);
         generate.set("uSmoothness", mParams.smoothness);
+        generate.set("uFootprint", !mPointLights && mParams.footprint == VSGLParams::Cell ? 1 : 0);
+        generate.set("uLayers", layers);
+        glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), mImportance.id());
+        glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), mTrilinear.id());
         mGeneratePass.dispatch(mCount, 1, NextRead::StorageBuffer);
         for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
             glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+        glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), 0);
     }
     const bool visibility = mParams.visibility == VSGLParams::ISM;
     if (visibility) {

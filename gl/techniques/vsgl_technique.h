@@ -68,6 +68,10 @@ struct VSGLParams {
     int count = 1024;           // N lights (section 4: 1024) [1, 65536]
     float smoothness = 4.0f;    // k of the mip level (section 3.2; section 4: 4)
     float biasAlpha = 0.001f;   // alpha of section 3.3 (Fig. 6: 0.001); 0 = never cancel (vsgl only)
+    // Each light's mip level and flux (vsgl only; passes/vsgl_generate.comp): Texel, the paper's
+    // reading; Cell (ours, not in the paper): the coarsest cell with at most k expected draws.
+    enum Footprint { Texel, Cell };
+    int footprint = Cell;
     float clampGeometry = 0.0f; // vpl-brsm: cap on cos cos / d^2 [1/m^2]; 0 = none (the paper's VPL figures)
     int viewGrid = 64;          // the G-buffer grid of the PDF pass [texels], a power of two
     int viewLevel = 2;          // its mip level whose texels are the view lights ((64/4)^2 = 256)
