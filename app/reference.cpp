@@ -7,6 +7,7 @@
 
 #include "core/util/content_hash.h"
 #include "core/util/error.h"
+#include "core/util/warning.h"
 
 namespace vplgi {
 
@@ -128,10 +129,21 @@ CachedReference obtainReference(const ReferenceRequest& request)
     if (!request.cacheDirectory.empty()) {
         result.cachePath = request.cacheDirectory + "/" + cacheKey(request) + ".exr";
         if (std::filesystem::exists(result.cachePath)) {
-            result.image = readImageLinear(result.cachePath);
-            result.spp = request.params.spp;
-            result.fromCache = true;
-            return result;
+            // A damaged entry (a disk filled up, a copy cut short) is a miss, not the end of the run.
+            try {
+                ImageRGBA32F cached = readImageLinear(result.cachePath);
+                if (cached.width == request.width && cached.height == request.height) {
+                    result.image = std::move(cached);
+                    result.spp = request.params.spp;
+                    result.fromCache = true;
+                    return result;
+                }
+                warn(result.cachePath + ": cached reference is " + std::to_string(cached.width) + "x" +
+                     std::to_string(cached.height) + ", not " + std::to_string(request.width) + "x" +
+                     std::to_string(request.height) + ": rendering it again");
+            } catch (const Error& e) {
+                warn(std::string(e.what()) + " (a damaged reference cache entry: rendering it again)");
+            }
         }
     }
     ProgressCallback progress;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <vector>
 
 #include "core/util/error.h"
 
@@ -123,13 +124,50 @@ void ParamSetter::choice(const std::string& key, int& index, const std::vector<s
     }
 }
 
+namespace {
+
+// Levenshtein distance (insertions, deletions, substitutions), for "did you mean".
+std::size_t editDistance(const std::string& a, const std::string& b)
+{
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+} // namespace
+
 void ParamSetter::finish() const
 {
     for (const auto& setting : mSettings) {
         if (mUsed.count(setting.first)) continue;
-        std::string known;
-        for (const std::string& k : mKnown) known += (known.empty() ? "" : ", ") + k;
-        throw Error("unknown parameter \"" + setting.first + "\" (known: " + known + ")");
+        // The closest known key when it is a likely typo (at most a third of the key's letters off);
+        // else the keys with the same prefix ("vsgl."), else every key.
+        const std::string& key = setting.first;
+        std::string closest;
+        std::size_t best = key.size() / 3 + 1;
+        for (const std::string& k : mKnown)
+            if (const std::size_t d = editDistance(key, k); d < best) {
+                best = d;
+                closest = k;
+            }
+        if (!closest.empty()) throw Error("unknown parameter \"" + key + "\" (did you mean \"" + closest + "\"?)");
+        const std::string prefix = key.substr(0, key.find('.') + 1);
+        std::string known, sameGroup;
+        for (const std::string& k : mKnown) {
+            known += (known.empty() ? "" : ", ") + k;
+            if (key.find('.') != std::string::npos && k.rfind(prefix, 0) == 0)
+                sameGroup += (sameGroup.empty() ? "" : ", ") + k;
+        }
+        throw Error("unknown parameter \"" + key + "\" (known: " + (sameGroup.empty() ? known : sameGroup) + ")");
     }
 }
 

@@ -34,6 +34,19 @@ ref $base --time-budget 1000
 grep -q "from cache" "$work/m.log" || { echo "FAIL: a time budget alone missed the cache"; cat "$work/m.log"; exit 1; }
 echo "reference: every changed input misses the cache, a time budget alone does not"
 
+# A damaged cache entry (cut short) is a miss with one warning, and is replaced.
+entry=$(grep -o "from cache .*" "$work/m.log" | cut -d' ' -f3)
+test -f "$entry" || { echo "FAIL: no cache entry named"; cat "$work/m.log"; exit 1; }
+head -c 100 "$entry" > "$entry.cut" && mv "$entry.cut" "$entry"
+# shellcheck disable=SC2086
+ref $base
+grep -q "rendered 4 spp" "$work/m.log" || { echo "FAIL: a damaged cache entry was not rendered again"; cat "$work/m.log"; exit 1; }
+test "$(grep -c "vplgi: warning: .*damaged reference cache entry" "$work/m.log")" -eq 1 || { echo "FAIL: no warning"; cat "$work/m.log"; exit 1; }
+# shellcheck disable=SC2086
+ref $base
+grep -q "from cache" "$work/m.log" || { echo "FAIL: the damaged entry was not replaced"; cat "$work/m.log"; exit 1; }
+echo "reference: a damaged cache entry is rendered again and replaced"
+
 "$vplgi" compare --scene "$here/scenes/cornell.json" --techniques direct --width 48 --height 48 --spp 8 --reference-spp 64 \
   --cache "$cache" --out "$work/cmp" > "$work/c.log" 2>&1
 for part in '<table' 'images/reference-f0000.png' 'images/direct-f0000.png' 'images/direct-f0000-error.png' \

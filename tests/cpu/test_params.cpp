@@ -48,7 +48,14 @@ TEST_CASE("bad settings are errors naming the key", "[params]")
     CHECK_THROWS_WITH(e.visitParams(fraction), Catch::Contains("not an integer"));
     ParamSetter unknown(Settings{{"x.exposur", "1"}});
     e.visitParams(unknown);
-    CHECK_THROWS_WITH(unknown.finish(), Catch::Contains("unknown parameter \"x.exposur\""));
+    CHECK_THROWS_WITH(unknown.finish(), "unknown parameter \"x.exposur\" (did you mean \"x.exposure\"?)");
+    // No likely typo: the keys of the same group, else every key.
+    ParamSetter far(Settings{{"x.brightness", "1"}});
+    e.visitParams(far);
+    CHECK_THROWS_WITH(far.finish(), Catch::StartsWith("unknown parameter \"x.brightness\" (known: x."));
+    ParamSetter otherGroup(Settings{{"nothing.here", "1"}});
+    e.visitParams(otherGroup);
+    CHECK_THROWS_WITH(otherGroup.finish(), Catch::StartsWith("unknown parameter \"nothing.here\" (known: x."));
     CHECK_THROWS_AS(parseSetting("novalue"), Error);
     CHECK(parseSetting("a.b=c=d").second == "c=d");
 }
