@@ -105,7 +105,7 @@ void VPLTechnique::setScene(const SceneContext& context)
     overhead.depthFormat = GL_DEPTH_COMPONENT32F;
     mOverhead = gl::RenderTarget("VPL overhead view", overhead);
     startPipeline();
-    createShadowMaps();
+    dropShadowMaps(); // made on the first frame whose visibility reads them
 }
 
 void VPLTechnique::startPipeline()
@@ -120,6 +120,13 @@ void VPLTechnique::startPipeline()
     else
         sampler = std::make_unique<IRSampler>(*mScene, *mRays, mIR);
     mPipeline = std::make_unique<VPLPipeline>(std::move(sampler), mRays);
+}
+
+void VPLTechnique::dropShadowMaps()
+{
+    mShadowMaps.reset();
+    mMapsGeneration.reset();
+    mMapPending.clear();
 }
 
 void VPLTechnique::createShadowMaps()
@@ -194,6 +201,11 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
     if (mRender.visibility == VPLRenderParams::RayTraced) {
         shadeRayTraced(frame, mInterleaved);
     } else {
+        // The atlas (I maps) only while the visibility reads it: with none, I can exceed what the
+        // atlas's memory budget holds.
+        const bool readsMaps = mRender.visibility == VPLRenderParams::ShadowMaps ||
+                               mRender.visibility == VPLRenderParams::FetchProbe;
+        if (readsMaps && !mShadowMaps) createShadowMaps();
         // 2. Lazy update: only the slots that changed since the set whose maps we hold.
         if (mRender.visibility == VPLRenderParams::ShadowMaps) {
             gl::PassTimer::Scope scope(frame.timer, "shadow maps");
@@ -228,7 +240,7 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
         // 3. Interleaved shading, eq. (5).
         gl::PassTimer::Scope scope(frame.timer, "interleaved shading");
         gbuffer.bindForReading();
-        mShadowMaps->bindForReading();
+        if (readsMaps) mShadowMaps->bindForReading();
         bindStorageBuffer(shared::kBindingVPLs, mVPLBuffer);
         const gl::Program& program = mShading->program();
         program.set("uTile", tile);
@@ -237,8 +249,8 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
         program.set("uVisibility", mRender.visibility == VPLRenderParams::ShadowMaps   ? 1
                                    : mRender.visibility == VPLRenderParams::FetchProbe ? 2
                                                                                        : 0);
-        program.set("uMapSize", mShadowMaps->params().mapSize);
-        program.set("uMapTilesPerRow", mShadowMaps->layout().tilesPerRow);
+        program.set("uMapSize", readsMaps ? mShadowMaps->params().mapSize : 1);
+        program.set("uMapTilesPerRow", readsMaps ? mShadowMaps->layout().tilesPerRow : 1);
         program.set("uNormalOffset", mRender.normalOffset);
         program.set("uDepthBias", mRender.depthBias);
         mShading->render(mInterleaved);
@@ -359,7 +371,7 @@ void VPLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
         startPipeline();
         maps = true;
     }
-    if (maps) createShadowMaps();
+    if (maps) dropShadowMaps();
 }
 
 std::vector<std::pair<std::string, double>> VPLTechnique::frameStats() const

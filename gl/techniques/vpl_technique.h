@@ -106,6 +106,7 @@ private:
     std::string prefix() const { return std::string(name()); }
     void startPipeline();
     void createShadowMaps();
+    void dropShadowMaps();
     float clampGeometry() const;
     int vplCount() const;
     void shadeRayTraced(const FrameContext& frame, const gl::RenderTarget& into);
