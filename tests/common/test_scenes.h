@@ -8,6 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "core/scene/scene.h"
+#include "core/trace/path_tracer.h"
+#include "core/trace/ray_scene.h"
 #include "core/util/image_io.h"
 
 namespace vplgi::test {
@@ -76,6 +78,19 @@ inline Scene cornerScene(float specular, float roughness)
     scene.cameras.push_back(camera);
     scene.validate();
     return scene;
+}
+
+// The one-bounce path tracer (what RSM techniques estimate) at pixel centres, as the rasteriser.
+inline ImageRGBA32F oneBounceReference(const Scene& scene, const Camera& camera, int width, int height, int spp,
+                                       std::uint32_t seed = 1)
+{
+    RayScene rays(scene);
+    PathTracerParams params;
+    params.mode = PathTracerParams::Mode::OneBounce;
+    params.spp = spp;
+    params.seed = seed;
+    params.jitterPixels = false;
+    return renderReference(scene, rays, camera, width, height, params).image;
 }
 
 // Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.

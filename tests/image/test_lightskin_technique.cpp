@@ -79,12 +79,7 @@ TEST_CASE("lightskin: the selected VALs converge to all VALs as N grows, all VAL
     for (int i = 0; i < 3; ++i)
         toFull[i] = test::relativeL1(render("lightskin", {{"lightskin.valCount", std::to_string(counts[i])}}), full);
 
-    RayScene rays(scene);
-    PathTracerParams params;
-    params.mode = PathTracerParams::Mode::OneBounce;
-    params.spp = 4096;
-    params.jitterPixels = false;
-    const ImageRGBA32F reference = renderReference(scene, rays, camera, width, height, params).image;
+    const ImageRGBA32F reference = test::oneBounceReference(scene, camera, width, height, 4096);
     const double fullError = test::relativeL1(full, reference);
     const double fullBias = meanLuminance(full) / meanLuminance(reference) - 1.0;
     test::saveTestImage("lightskin_full_corner", full);

@@ -303,14 +303,9 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
     const Scene scene = test::cornerScene(0.0f, 1.0f); // Lambertian: the SG lobes reduce to exact integrals
     const Camera& camera = scene.cameras[0];
     const int width = 48, height = 36;
-    RayScene rays(scene);
-    PathTracerParams params;
-    params.mode = PathTracerParams::Mode::OneBounce;
-    params.spp = 16384;
-    params.jitterPixels = false; // pixel centres, as the rasteriser
-    const ImageRGBA32F reference = renderReference(scene, rays, camera, width, height, params).image;
-    params.seed = 2;
-    const double referenceNoise = test::relativeL1(renderReference(scene, rays, camera, width, height, params).image, reference);
+    const ImageRGBA32F reference = test::oneBounceReference(scene, camera, width, height, 16384);
+    const double referenceNoise =
+        test::relativeL1(test::oneBounceReference(scene, camera, width, height, 16384, 2), reference);
 
     const int counts[] = {256, 1024, 4096};
     double vsglError[3], vplError[3], between[3];
@@ -397,12 +392,7 @@ TEST_CASE("vsgl on the shared CornellBox.glb (millimetres, a spot light added): 
     scene.validate();
     const Camera& camera = scene.cameras[0];
     const int width = 48, height = 48;
-    RayScene rays(scene);
-    PathTracerParams params;
-    params.mode = PathTracerParams::Mode::OneBounce;
-    params.spp = 2048;
-    params.jitterPixels = false;
-    const ImageRGBA32F reference = renderReference(scene, rays, camera, width, height, params).image;
+    const ImageRGBA32F reference = test::oneBounceReference(scene, camera, width, height, 2048);
     const auto mean = [](const ImageRGBA32F& image) {
         double sum = 0.0;
         for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4)
