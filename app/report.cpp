@@ -255,6 +255,12 @@ std::string noiseCheckText(const CompareReport& report)
     return text.str();
 }
 
+// "0.42 [0.35, 0.49]": a ratio with its interval.
+std::string ratioIntervalText(const RatioInterval& r)
+{
+    return formatNumber(r.ratio, 3) + " [" + formatNumber(r.low, 3) + ", " + formatNumber(r.high, 3) + "]";
+}
+
 // An image metric, or "" (CSV) / "null" (JSON) / "-" (HTML) without a full-image reference.
 std::string imageMetric(const CompareReport& report, double value, const char* missing)
 {
@@ -286,8 +292,7 @@ std::string compareTemporalSummary(const CompareReport& report)
                 text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": "
                      << formatNumber(t.againstErrors.meanAbsToneMapped) << "  "
                      << formatNumber(t.againstErrors.p999AbsToneMapped) << "  |E'| ratio "
-                     << formatNumber(t.againstEPrime.ratio, 3) << " [" << formatNumber(t.againstEPrime.low, 3) << ", "
-                     << formatNumber(t.againstEPrime.high, 3) << "]\n";
+                     << ratioIntervalText(t.againstEPrime) << "\n";
     }
     return text.str();
 }
@@ -419,8 +424,7 @@ std::string metricsTableRows(const CompareReport& report)
         if (!report.against.empty())
             table << "</td><td>" << formatNumber(t.againstErrors.meanAbsToneMapped) << "</td><td>"
                   << formatNumber(t.againstErrors.p999AbsToneMapped) << "</td><td>"
-                  << formatNumber(t.againstEPrime.ratio, 3) << " [" << formatNumber(t.againstEPrime.low, 3) << ", "
-                  << formatNumber(t.againstEPrime.high, 3) << "]";
+                  << ratioIntervalText(t.againstEPrime);
         table << "</td></tr>\n";
     }
     return table.str();

@@ -99,6 +99,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
     require(isPowerOfTwo(mParams.viewGrid), std::string(name()) + ".viewGrid must be a power of two, not " +
                                                 std::to_string(mParams.viewGrid));
     const std::string prefix(name());
+    const bool cells = !mPointLights && mParams.footprint == VSGLParams::Cell; // vsgl.footprint
     mValidLights = 0;
     // N lights in one storage block, and a per-pixel shading loop over all N (llvmpipe stops it
     // after 65535 iterations: N = 65536 would drop the last light).
@@ -172,7 +173,6 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         const std::uint32_t seed = mParams.animateSeed ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
                                                        : mParams.seed;
         mSampler->sample(mImportance, mCount, seed, NextRead::StorageBuffer);
-        const bool cells = !mPointLights && mParams.footprint == VSGLParams::Cell;
         if (cells) {
             // The cells' probabilities: 2x2 means up the chain (power-of-two layers: no cell straddles two).
             glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -193,7 +193,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uLevels", mRSM->levelCount());
         generate.set("uLevel", 0);
         generate.set("uSmoothness", mParams.smoothness);
-        generate.set("uFootprint", !mPointLights && mParams.footprint == VSGLParams::Cell ? 1 : 0);
+        generate.set("uFootprint", cells ? 1 : 0);
         generate.set("uLayers", layers);
         glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), mImportance.id());
         glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), mTrilinear.id());

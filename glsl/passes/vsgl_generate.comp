@@ -74,9 +74,10 @@ void main()
         texel = ivec3(s.x % uSize, s.y, s.x / uSize); // the importance map holds the layers side by side
         fluxScale = 1.0 / (float(uCount) * s.probability); // Phi / (N P_j): an unbiased N-draw estimator
         if (uMode == 0) {
-            level = vsglMipLevel(float(uCount), s.probability, uSmoothness, uLevels); // MATH.md 5.2
             filtered = true;
-            if (uFootprint == 1) {
+            if (uFootprint == 0) {
+                level = vsglMipLevel(float(uCount), s.probability, uSmoothness, uLevels); // MATH.md 5.2
+            } else {
                 // The leaf: P_cell = 4^l x the mean importance at level l / the total (I_j / P_j).
                 float toProbability = s.probability / s.importance;
                 int leaf = 0;

@@ -70,8 +70,8 @@ VPLGI_CONST int kUnitShadowAtlas = 18; // ShadowAtlas depth (sampler2DArray), af
 VPLGI_CONST int kUnitVPLShadowMaps = 19; // VPL paraboloid maps: distance [m] (sampler2DArray, r32f)
 VPLGI_CONST int kUnitDisplayView = 20; // renderer.display's texture view (sampler2DArray; passes/tonemap.frag)
 VPLGI_CONST int kUnitBilateralInput = 21; // unfiltered radiance read by passes/bilateral_filter.frag
-VPLGI_CONST int kUnitImportanceMips = 23; // the PDF of BRSMs, mipmapped (passes/vsgl_generate.comp: vsgl.filteredProbability)
 VPLGI_CONST int kUnitISM = 22; // imperfect shadow maps: distance [m] (sampler2DArray, r32f; gl/passes/imperfect_shadow_maps)
+VPLGI_CONST int kUnitImportanceMips = 23; // the PDF of BRSMs with box mips (passes/vsgl_generate.comp: vsgl.footprint = cell)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target

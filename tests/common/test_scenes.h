@@ -93,6 +93,16 @@ inline ImageRGBA32F oneBounceReference(const Scene& scene, const Camera& camera,
     return renderReference(scene, rays, camera, width, height, params).image;
 }
 
+// Mean luminance (Rec. 709) over the pixels of an image; 0 for an empty one.
+inline double meanLuminance(const ImageRGBA32F& image)
+{
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4, ++n)
+        sum += 0.2126 * image.pixels[i] + 0.7152 * image.pixels[i + 1] + 0.0722 * image.pixels[i + 2];
+    return n ? sum / static_cast<double>(n) : 0.0;
+}
+
 // Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.
 inline double relativeL1(const ImageRGBA32F& a, const ImageRGBA32F& b)
 {

@@ -23,15 +23,7 @@ using namespace vplgi;
 
 namespace {
 
-// Mean luminance of an image.
-double meanLuminance(const ImageRGBA32F& image)
-{
-    double sum = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4, ++n)
-        sum += 0.2126 * image.pixels[i] + 0.7152 * image.pixels[i + 1] + 0.0722 * image.pixels[i + 2];
-    return n ? sum / static_cast<double>(n) : 0.0;
-}
+using test::meanLuminance;
 
 // A spot light on a floor patch (x < 0.9), a wall at x = 3 facing it that the spot does not reach,
 // and, with `blocker`, a 2.5 m wall at x = 1.5 between them that takes every one-bounce path from

@@ -23,6 +23,7 @@
 #include "gl_test_context.h"
 #include "measured.h"
 #include "shared_assets.h"
+#include "test_scenes.h"
 
 using namespace vplgi;
 
@@ -46,16 +47,7 @@ Rendered renderIndirect(Renderer& renderer, const Camera& camera, int width, int
     return out;
 }
 
-double meanLuminance(const ImageRGBA32F& image)
-{
-    double sum = 0.0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const float* p = image.at(x, y);
-            sum += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-        }
-    return sum / (static_cast<double>(image.width) * image.height);
-}
+using test::meanLuminance;
 
 // Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.
 double meanAbsoluteRelative(const ImageRGBA32F& a, const ImageRGBA32F& b)

@@ -393,13 +393,8 @@ TEST_CASE("vsgl on the shared CornellBox.glb (millimetres, a spot light added): 
     const Camera& camera = scene.cameras[0];
     const int width = 48, height = 48;
     const ImageRGBA32F reference = test::oneBounceReference(scene, camera, width, height, 2048);
-    const auto mean = [](const ImageRGBA32F& image) {
-        double sum = 0.0;
-        for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4)
-            sum += 0.2126 * image.pixels[i] + 0.7152 * image.pixels[i + 1] + 0.0722 * image.pixels[i + 2];
-        return sum;
-    };
-    REQUIRE(mean(reference) > 0.0);
+    const double referenceMean = test::meanLuminance(reference);
+    REQUIRE(referenceMean > 0.0);
     double bias[3], error[3];
     const char* runs[3] = {"vsgl", "vsgl texel", "vpl-brsm"};
     for (int i = 0; i < 3; ++i) {
@@ -408,7 +403,7 @@ TEST_CASE("vsgl on the shared CornellBox.glb (millimetres, a spot light added): 
         if (i == 1) settings.emplace_back("vsgl.footprint", "texel");
         std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(scene, technique, settings);
         const ImageRGBA32F image = test::renderIndirect(*renderer, camera, width, height);
-        bias[i] = mean(image) / mean(reference) - 1.0;
+        bias[i] = test::meanLuminance(image) / referenceMean - 1.0;
         error[i] = test::relativeL1(image, reference);
     }
     MEASURED("CornellBox.glb with a spot light (48x48, N = 1024, RSM 128^2, ISMs; onebounce 2048 spp): mean bias / "
