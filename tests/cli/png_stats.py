@@ -3,6 +3,7 @@
 
   png_stats.py mean A.png [X0 Y0 X1 Y1]            mean RGB byte value (of the pixel rectangle)
   png_stats.py diff A.png B.png [X0 Y0 X1 Y1]      mean absolute RGB difference (same size images)
+  png_stats.py size A.png                          "WIDTH HEIGHT"
 Rectangles are half-open pixel ranges, rows from the top; negative values count from the right/bottom.
 """
 import struct
@@ -69,6 +70,9 @@ def main():
         x0, y0, x1, y1 = rect(w, h, sys.argv[3:])
         total = sum(rows[y][4 * x + c] for y in range(y0, y1) for x in range(x0, x1) for c in range(3))
         print('%.3f' % (total / ((x1 - x0) * (y1 - y0) * 3)))
+    elif cmd == 'size':
+        w, h, _ = load(sys.argv[2])
+        print('%d %d' % (w, h))
     elif cmd == 'diff':
         wa, ha, ra = load(sys.argv[2])
         wb, hb, rb = load(sys.argv[3])

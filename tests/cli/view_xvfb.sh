@@ -34,5 +34,17 @@ DRIVE
 xvfb-run -a -s "-screen 0 640x480x24" bash "$work/drive.sh"
 cat "$work/view.log"
 ls -l "$work"/shots/*.png
-python3 -c "import sys; d=open(sys.argv[1],'rb').read(); sys.exit(0 if d[:8]==b'\x89PNG\r\n\x1a\n' and len(d) > 200 else 1)" "$(ls "$work"/shots/*.png | head -1)"
+# The screenshot is the rendered scene: the window's size, and, right of the panel (x >= 110 at this
+# size), the same pixels as a headless render of the same scene (`direct`: deterministic; measured
+# difference 0 of 255), which must not be black.
+shot=$(ls "$work"/shots/*.png | head -1)
+here=$(cd "$(dirname "$0")" && pwd)
+size=$(python3 "$here/png_stats.py" size "$shot")
+[ "$size" = "160 120" ] || { echo "FAIL: screenshot is $size, the window 160 120"; exit 1; }
+"$vplgi" render --scene cornell --width 160 --height 120 --out "$work/headless.png" --quiet
+diff=$(python3 "$here/png_stats.py" diff "$shot" "$work/headless.png" 110 0 160 120)
+mean=$(python3 "$here/png_stats.py" mean "$work/headless.png" 110 0 160 120)
+echo "right of the panel: mean |screenshot - headless render| $diff, headless mean $mean (8-bit display values)"
+python3 -c "import sys; sys.exit(0 if $diff < 0.5 and $mean > 5 else 1)" \
+  || { echo "FAIL: the screenshot is not the rendered scene"; exit 1; }
 echo "viewer checks passed"

@@ -80,6 +80,31 @@ inline Scene cornerScene(float specular, float roughness)
     return scene;
 }
 
+// Glossy indirect light with diffuse senders: a Lambertian wall lit by a spot that misses the floor,
+// and a glossy metal floor (GGX, roughness 0.3) that reflects the lit wall towards the camera. Only the
+// wall sends one-bounce light, so the techniques whose virtual lights are diffuse emitters (VPLs from
+// SMCIR, IR or a BRSM) estimate the same one-bounce transport as the path tracer; the floor's glossy
+// BRDF is evaluated at the receiver, where every technique uses the full material. Unoccluded.
+inline Scene glossyFloorScene()
+{
+    Scene scene;
+    scene.name = "glossy floor";
+    const int floor = addTestMaterial(scene, "floor", glm::vec3(0.6f, 0.6f, 0.6f), 1.0f, 0.3f);
+    scene.materials[static_cast<std::size_t>(floor)].metallic = 1.0f; // all glossy: F0 = 0.6, no diffuse lobe
+    addTestQuad(scene, floor, {-1.0f, 0.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});
+    addTestQuad(scene, addTestMaterial(scene, "wall", glm::vec3(0.8f, 0.4f, 0.3f)),
+                {-1.0f, 0.0f, -1.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
+    // Aimed across at the wall: its cone (0.45 rad) reaches the wall above y = 0.2 and never the floor.
+    scene.lights.push_back(makeTestSpot("spot", {0.8f, 1.0f, 0.0f}, {-1.0f, 0.05f, 0.0f}, 6.0f, 0.3f, 0.45f));
+    Camera camera;
+    camera.name = "glossy floor";
+    camera.position = {1.8f, 0.9f, 0.6f};
+    camera.target = {-0.6f, 0.15f, 0.0f};
+    scene.cameras.push_back(camera);
+    scene.validate();
+    return scene;
+}
+
 // The one-bounce path tracer (what RSM techniques estimate) at pixel centres, as the rasteriser.
 inline ImageRGBA32F oneBounceReference(const Scene& scene, const Camera& camera, int width, int height, int spp,
                                        std::uint32_t seed = 1)

@@ -414,7 +414,7 @@ TEST_CASE("RSM mips: a half-empty spot RSM stays on the lit plane at every level
     CHECK(worstTwin < 1e-6);
 }
 
-TEST_CASE("RSM mips are bit-identical over runs", "[rsm]")
+TEST_CASE("RSM mips are bit-identical over runs", "[rsm][determinism]")
 {
     // A plane, a glossy metal box and a dielectric box under a spot light and a sun.
     Scene scene = planeScene(-3.0f, 3.0f, -3.0f, 3.0f, 0.0f, 0.6f);

@@ -201,6 +201,68 @@ TEST_CASE("smcir on the furnace: interleaved shading averages to the CPU gather 
     CHECK(std::abs(againstClosedForm) < 0.08);
 }
 
+TEST_CASE("ir on the furnace (GPU): interleaved shading averages to the CPU gather and to the one-bounce closed form",
+          "[image][ir][furnace][numbers]")
+{
+    // IR's GPU half on the furnace, as the smcir test above: with one bounce every path deposits
+    // one VPL of flux Phi / I, so the estimate is L_2 = rho^2 I0 / (pi R^2) (MATH.md 3; the CPU
+    // test "ir furnace: ..." checks the sampler alone) up to the tessellation and the GPU's floats.
+    test::ensureGLContext();
+    FurnaceParams furnace;
+    furnace.rings = 48; // as the smcir test: the test's cost is the shadow maps
+    furnace.segments = 96;
+    const Scene scene = makeFurnace(furnace);
+    const Camera& camera = scene.cameras[0];
+    const int width = 32, height = 16; // multiples of the 4 x 4 tiles
+    const Settings settings = {{"ir.vplCount", "4096"},   {"ir.bounces", "1"},          {"ir.clampScale", "0"},
+                               {"ir.shadowMapSize", "16"}, {"ir.filter.enabled", "false"}, {"ir.synchronous", "true"}};
+    std::unique_ptr<Renderer> renderer = makeRenderer(scene, "ir", settings);
+    const Rendered gpu = renderIndirect(*renderer, camera, width, height);
+
+    RayScene rays(scene);
+    const ImageRGBA32F cpu = renderVPLGather(scene, rays, camera, width, height, gpu.set, VPLGatherParams{});
+    const double expected = furnaceRadianceBounce(furnace, 2);
+    const double againstGather = meanLuminance(gpu.indirect) / meanLuminance(cpu) - 1.0;
+    const double againstClosedForm = meanLuminance(gpu.indirect) / expected - 1.0;
+    MEASURED("ir furnace (GPU), I = 4096, one bounce, interleaved: mean vs the CPU gather of the same VPLs "
+             << againstGather << ", vs rho^2 I0 / (pi R^2) " << againstClosedForm);
+    // Measured 2.3e-5 against the gather (float summation order, GPU vs CPU) and +1.2e-3 against
+    // the closed form (the 48-ring tessellation: G is 1/(4R^2) only on the true sphere; with one
+    // bounce nothing random is left but the VPL positions). Bounds about 2.6x.
+    CHECK(std::abs(againstGather) < 6e-5);
+    CHECK(std::abs(againstClosedForm) < 3e-3);
+}
+
+TEST_CASE("ir: glossy indirect light on a metal floor like the matched path tracer", "[image][ir][numbers]")
+{
+    // The glossy receiver's BRDF on the GPU (GGX at every VPL) against the clamped one-bounce path
+    // tracer that ir asks for (Technique::configureReference): only the wall sends light, and it is
+    // Lambertian, so the VPLs' diffuse emission is exact (tests/common/test_scenes.h).
+    test::ensureGLContext();
+    const Scene scene = test::glossyFloorScene();
+    const Camera& camera = scene.cameras[0];
+    const int width = 48, height = 32;
+    std::unique_ptr<Renderer> renderer =
+        makeRenderer(scene, "ir", {{"ir.vplCount", "4096"}, {"ir.bounces", "1"}, {"ir.synchronous", "true"}});
+    const Rendered gpu = renderIndirect(*renderer, camera, width, height);
+    RayScene rays(scene);
+    PathTracerParams reference;
+    reference.mode = PathTracerParams::Mode::Clamped;
+    reference.spp = 2048;
+    reference.jitterPixels = false;
+    renderer->technique().configureReference(reference, {});
+    const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
+    const double bias = meanLuminance(gpu.indirect) / meanLuminance(truth) - 1.0;
+    const double error = test::relativeL1(gpu.indirect, truth);
+    MEASURED("ir on the glossy metal floor (48x32, I = 4096, one bounce) vs the clamped path tracer (2048 spp): "
+             "mean bias " << bias << ", relative L1 " << error);
+    // Measured mean bias +1.2% and relative L1 0.146 (4096 VPLs on a GGX lobe of roughness 0.3:
+    // per-pixel noise; the reference's own is far below). Bounds about 3x and 2.4x: a lost or
+    // doubled glossy lobe (the floor has no other) moves the mean by far more.
+    CHECK(std::abs(bias) < 0.04);
+    CHECK(error < 0.35);
+}
+
 TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling with bounced light like the path tracer",
           "[image][smcir][numbers]")
 {
@@ -250,9 +312,12 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     CHECK(smcir > 0.0);
     // Measured +23% (+25% before independentRadiance): SMCIR's own bias at I = 2048 after 100
     // warm-up frames (smcir-rt, the same sampler with ray-traced visibility, is +20% over the whole
-    // image, docs/smcir.md), not the GPU half (same VPLs: -0.3%, first test). 0.4 is 1.7x that
-    // bias: what this guards is a lit ceiling of the right magnitude.
-    CHECK(std::abs(relative) < 0.4);
+    // image, docs/smcir.md), not the GPU half (same VPLs: -0.3%, first test). The run is
+    // deterministic, so the band only has to hold code changes that keep the light transport: a
+    // lost tenth of the light, or a doubled one, leaves it. A fix of SMCIR's bias ("SMCIR without
+    // drift") moves this band with the measurement.
+    CHECK(relative > 0.12); // measured +0.227: a tenth of the light lost gives +0.105
+    CHECK(relative < 0.34);
 }
 
 namespace {

@@ -303,12 +303,12 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
     const Scene scene = test::cornerScene(0.0f, 1.0f); // Lambertian: the SG lobes reduce to exact integrals
     const Camera& camera = scene.cameras[0];
     const int width = 48, height = 36;
+    // Its own noise (relative L1 against a second seed's 16384 spp) is in docs/testing.md; nothing
+    // here asserts it, so the test renders one reference.
     const ImageRGBA32F reference = test::oneBounceReference(scene, camera, width, height, 16384);
-    const double referenceNoise =
-        test::relativeL1(test::oneBounceReference(scene, camera, width, height, 16384, 2), reference);
 
     const int counts[] = {256, 1024, 4096};
-    double vsglError[3], vplError[3], between[3];
+    double vsglError[3], vplError[3], between[3], vsglBias = 0.0, vplBias = 0.0;
     for (int i = 0; i < 3; ++i) {
         const std::string n = std::to_string(counts[i]);
         auto render = [&](const std::string& technique) {
@@ -322,18 +322,56 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
         vplError[i] = test::relativeL1(vpl, reference);
         between[i] = test::relativeL1(vsgl, vpl);
         if (i == 2) {
+            vsglBias = test::meanLuminance(vsgl) / test::meanLuminance(reference) - 1.0;
+            vplBias = test::meanLuminance(vpl) / test::meanLuminance(reference) - 1.0;
             test::saveTestImage("vsgl_corner_4096", vsgl);
             test::saveTestImage("vpl_brsm_corner_4096", vpl);
             test::saveTestImage("corner_onebounce_reference", reference);
         }
     }
-    MEASURED("unoccluded corner (48x36, RSM 128^2, onebounce reference 16384 spp, its own noise "
-             << referenceNoise << "): relative L1 vs reference at N = 256/1024/4096: vsgl " << vsglError[0] << " "
-             << vsglError[1] << " " << vsglError[2] << ", vpl-brsm " << vplError[0] << " " << vplError[1] << " "
-             << vplError[2] << "; vsgl vs vpl-brsm " << between[0] << " " << between[1] << " " << between[2]);
+    MEASURED("unoccluded corner (48x36, RSM 128^2, onebounce reference 16384 spp): relative L1 vs reference at "
+             "N = 256/1024/4096: vsgl " << vsglError[0] << " " << vsglError[1] << " " << vsglError[2] << ", vpl-brsm "
+             << vplError[0] << " " << vplError[1] << " " << vplError[2] << "; vsgl vs vpl-brsm " << between[0] << " "
+             << between[1] << " " << between[2] << "; mean bias at N = 4096: vsgl " << vsglBias << ", vpl-brsm " << vplBias);
     CHECK(vsglError[1] < vsglError[0]);
     CHECK(vsglError[2] < vsglError[1]);
     CHECK(between[2] < between[0]);
+    // Measured relative L1 vsgl 0.176 / 0.093 / 0.063, vpl-brsm 0.140 / 0.074 / 0.055 at N = 256 /
+    // 1024 / 4096, and mean biases at N = 4096 of -4.2% (vsgl) and -2.8% (vpl-brsm): the RSM's
+    // 128^2 texels near the corner. Bounds 2x the errors; the biases one-sided below at about 2x
+    // (the sign is known) and at +2% above, where a doubled or leaked light would show.
+    const double vsglBound[3] = {0.35, 0.19, 0.13}, vplBound[3] = {0.28, 0.15, 0.11};
+    for (int i = 0; i < 3; ++i) {
+        INFO("N = " << counts[i]);
+        CHECK(vsglError[i] < vsglBound[i]);
+        CHECK(vplError[i] < vplBound[i]);
+    }
+    CHECK(vsglBias > -0.09);
+    CHECK(vsglBias < 0.02);
+    CHECK(vplBias > -0.06);
+    CHECK(vplBias < 0.02);
+}
+
+TEST_CASE("vpl-brsm: glossy indirect light on a metal floor like the one-bounce path tracer", "[vsgl][image][numbers]")
+{
+    // An RSM technique's glossy receivers (GGX at every VPL) against the one-bounce path tracer: only
+    // the Lambertian wall sends light (tests/common/test_scenes.h), unoccluded, so visibility is off.
+    test::ensureGLContext();
+    const Scene scene = test::glossyFloorScene();
+    const Camera& camera = scene.cameras[0];
+    const int width = 48, height = 32;
+    const ImageRGBA32F reference = test::oneBounceReference(scene, camera, width, height, 4096);
+    std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
+        scene, "vpl-brsm", {{"rsm.size", "128"}, {"vpl-brsm.count", "4096"}, {"vpl-brsm.visibility", "none"}});
+    const ImageRGBA32F image = test::renderIndirect(*renderer, camera, width, height);
+    const double bias = test::meanLuminance(image) / test::meanLuminance(reference) - 1.0;
+    const double error = test::relativeL1(image, reference);
+    MEASURED("vpl-brsm on the glossy metal floor (48x32, N = 4096, RSM 128^2) vs the one-bounce path tracer "
+             "(4096 spp): mean bias " << bias << ", relative L1 " << error);
+    // Measured mean bias +0.01% and relative L1 0.028. The bias bound, 1%, is the reference's own
+    // accuracy at 4096 spp, not 3x a number that small; the L1 bound is 2.5x.
+    CHECK(std::abs(bias) < 0.01);
+    CHECK(error < 0.07);
 }
 
 TEST_CASE("vsgl and vpl-brsm images are bit-identical over runs", "[vsgl][vsgl-determinism]")
@@ -410,10 +448,11 @@ TEST_CASE("vsgl on the shared CornellBox.glb (millimetres, a spot light added): 
              "relative L1: " << runs[0] << " " << bias[0] << " / " << error[0] << ", " << runs[1] << " " << bias[1]
              << " / " << error[1] << ", " << runs[2] << " " << bias[2] << " / " << error[2]);
     // Measured: vsgl -2.6% / 0.167, texel -0.2% / 0.226, vpl-brsm +0.4% / 0.111 (the reference's own
-    // noise is part of the L1). Bounds about 3x (the biases: at least 5%, as a one-bounce image moves
-    // by that much with a small change of the RSM's content); a leak through the walls or a lost
-    // bounce moves the mean by far more.
+    // noise is part of the L1). vsgl's bounds are about 3x. vpl-brsm's bias bound is 2%: 5x its
+    // measured +0.4% but no looser, as a 5% bound let a lost or doubled part of the light through
+    // (the reference's own mean is good to about 0.3% at 2048 spp); its L1 bound is 2.7x.
     CHECK(std::abs(bias[0]) < 0.08);
     CHECK(error[0] < 0.45);
-    CHECK(std::abs(bias[2]) < 0.05);
+    CHECK(std::abs(bias[2]) < 0.02);
+    CHECK(error[2] < 0.3);
 }
