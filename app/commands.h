@@ -13,5 +13,6 @@ int runScenes(const std::vector<std::string>& args);
 int runReference(const std::vector<std::string>& args);
 int runCompare(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runConform(const std::vector<std::string>& args);
 
 } // namespace vplgi

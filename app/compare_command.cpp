@@ -218,16 +218,6 @@ std::vector<double> luminances(const std::vector<glm::vec3>& radiance)
     return values;
 }
 
-// Technique radiance minus its direct light: the indirect part, for indirect/clamped references.
-ImageRGBA32F indirectPart(const Renderer& renderer)
-{
-    ImageRGBA32F total = renderer.readRadiance();
-    const ImageRGBA32F direct = renderer.readDirect();
-    for (std::size_t i = 0; i < total.pixels.size(); ++i)
-        if (i % 4 != 3) total.pixels[i] -= direct.pixels[i];
-    return total;
-}
-
 // The part of a technique's image that the reference's mode simulates (compare like with like).
 ImageRGBA32F comparablePart(const Renderer& renderer, PathTracerParams::Mode mode)
 {

@@ -22,6 +22,7 @@ const char* kUsage =
     "  reference  path-trace a ground-truth EXR (Embree; full, direct, indirect or clamped)\n"
     "  compare  render techniques and references, write an HTML report with metrics and plots\n"
     "  bench    per-pass timings of a technique (and ratios against another)\n"
+    "  conform  every technique against the path tracer over seeds and scenes (bias with intervals)\n"
     "  scenes   list the built-in scenes and techniques\n";
 
 } // namespace
@@ -42,8 +43,9 @@ int main(int argc, char** argv)
         if (command == "reference") return vplgi::runReference(args);
         if (command == "compare") return vplgi::runCompare(args);
         if (command == "bench") return vplgi::runBench(args);
+        if (command == "conform") return vplgi::runConform(args);
         throw vplgi::Error("unknown command \"" + command +
-                           "\" (commands: render, view, reference, compare, bench, scenes; see vplgi --help)");
+                           "\" (commands: render, view, reference, compare, bench, conform, scenes; see vplgi --help)");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vplgi: error: %s\n", e.what());
         return 1;

@@ -166,4 +166,13 @@ std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpe
     return sessions;
 }
 
+ImageRGBA32F indirectPart(const Renderer& renderer)
+{
+    ImageRGBA32F total = renderer.readRadiance();
+    const ImageRGBA32F direct = renderer.readDirect();
+    for (std::size_t i = 0; i < total.pixels.size(); ++i)
+        if (i % 4 != 3) total.pixels[i] -= direct.pixels[i];
+    return total;
+}
+
 } // namespace vplgi

@@ -68,6 +68,10 @@ SessionOptions sessionOptions(const OptionParser& parser);
 // Throws Error naming the cameras there are.
 const Camera& resolveCamera(Scene& scene, const std::string& name);
 
+// A technique's radiance minus its direct light: the indirect part (compare's indirect, clamped and
+// onebounce references, conform).
+ImageRGBA32F indirectPart(const Renderer& renderer);
+
 class Session;
 // Sessions of one scene with several techniques (compare, bench): each gets its settings list; keys
 // no session (and no field in `alsoKnown`) recognises are an error, checked before any GL work.

@@ -97,6 +97,8 @@ public:
     void visitParams(ParamVisitor& visitor) override;
     void reloadShaders(const gl::ShaderLoader& shaders) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
+    // conform compares it with: one bounce from the RSM (LightSkin section 3).
+    PathTracerParams::Mode matchedReferenceMode() const override { return PathTracerParams::Mode::OneBounce; }
     std::vector<DebugView> debugViews() const override;
     void applyParamChanges(const std::set<std::string>& changedKeys) override;
 

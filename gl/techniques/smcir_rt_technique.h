@@ -37,6 +37,8 @@ public:
     void render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target) override;
     void visitParams(ParamVisitor& visitor) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
+    // conform compares it with: as smcir.
+    PathTracerParams::Mode matchedReferenceMode() const override { return PathTracerParams::Mode::Clamped; }
     void configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const override;
     void applyParamChanges(const std::set<std::string>& changedKeys) override;
 

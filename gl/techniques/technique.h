@@ -102,6 +102,10 @@ public:
     // compare`), e.g. SMCIR's untextured bounces (section 5) and its clamp (5.4). Called after
     // setScene(); `explicitKeys` are the reference.* keys the user set, which win.
     virtual void configureReference(PathTracerParams& /*params*/, const std::set<std::string>& /*explicitKeys*/) const {}
+    // The part of the light transport this technique estimates, which `vplgi conform` compares it
+    // with (its matched reference, then configureReference): Indirect (all of it) by default; the
+    // VPL techniques estimate the clamped indirect light (SMCIR 5.4), the RSM techniques one bounce.
+    virtual PathTracerParams::Mode matchedReferenceMode() const { return PathTracerParams::Mode::Indirect; }
 };
 
 // The explicit list of techniques; an unknown name throws Error listing the known ones.

@@ -95,6 +95,8 @@ public:
     void reloadShaders(const gl::ShaderLoader& shaders) override;
     void applyParamChanges(const std::set<std::string>& changedKeys) override;
     std::vector<std::pair<std::string, double>> frameStats() const override;
+    // conform compares it with: SMCIR 5.4: clamped, its bounce cap (configureReference).
+    PathTracerParams::Mode matchedReferenceMode() const override { return PathTracerParams::Mode::Clamped; }
     std::vector<DebugView> debugViews() const override;
     void configureReference(PathTracerParams& params, const std::set<std::string>& explicitKeys) const override;
 

@@ -59,6 +59,16 @@ inline Light makeTestSpot(const std::string& name, glm::vec3 position, glm::vec3
     return spot;
 }
 
+// Adds a camera at `position` looking at `target` (the Camera defaults otherwise).
+inline void addTestCamera(Scene& scene, const std::string& name, glm::vec3 position, glm::vec3 target)
+{
+    Camera camera;
+    camera.name = name;
+    camera.position = position;
+    camera.target = target;
+    scene.cameras.push_back(camera);
+}
+
 // An unoccluded L: a floor and a wall meeting at x = -1, and a spot light on the floor near the
 // wall; every surface point sees every other unoccluded, so visibility can be off. `specular` and
 // `roughness` are both materials' (0 and 1: Lambertian).
@@ -71,11 +81,7 @@ inline Scene cornerScene(float specular, float roughness)
     addTestQuad(scene, addTestMaterial(scene, "wall", glm::vec3(0.8f, 0.4f, 0.3f), specular, roughness),
                 {-1.0f, 0.0f, -1.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
     scene.lights.push_back(makeTestSpot("spot", {0.6f, 1.6f, 0.0f}, {-0.9f, -1.6f, 0.0f}, 6.0f, 0.3f, 0.45f));
-    Camera camera;
-    camera.name = "corner";
-    camera.position = {2.0f, 1.3f, 2.0f};
-    camera.target = {-0.4f, 0.5f, 0.0f};
-    scene.cameras.push_back(camera);
+    addTestCamera(scene, "corner", {2.0f, 1.3f, 2.0f}, {-0.4f, 0.5f, 0.0f});
     scene.validate();
     return scene;
 }
@@ -96,11 +102,7 @@ inline Scene glossyFloorScene()
                 {-1.0f, 0.0f, -1.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
     // Aimed across at the wall: its cone (0.45 rad) reaches the wall above y = 0.2 and never the floor.
     scene.lights.push_back(makeTestSpot("spot", {0.8f, 1.0f, 0.0f}, {-1.0f, 0.05f, 0.0f}, 6.0f, 0.3f, 0.45f));
-    Camera camera;
-    camera.name = "glossy floor";
-    camera.position = {1.8f, 0.9f, 0.6f};
-    camera.target = {-0.6f, 0.15f, 0.0f};
-    scene.cameras.push_back(camera);
+    addTestCamera(scene, "glossy floor", {1.8f, 0.9f, 0.6f}, {-0.6f, 0.15f, 0.0f});
     scene.validate();
     return scene;
 }

@@ -49,6 +49,20 @@ Rendered renderIndirect(Renderer& renderer, const Camera& camera, int width, int
 
 using test::meanLuminance;
 
+// The clamped path-traced reference the renderer's technique asks for (Technique::configureReference:
+// SMCIR's and IR's clamp, untextured bounces and bounce cap), at pixel centres as the rasteriser samples.
+ImageRGBA32F clampedReference(const Scene& scene, Renderer& renderer, const Camera& camera, int width, int height,
+                              int spp)
+{
+    RayScene rays(scene);
+    PathTracerParams reference;
+    reference.mode = PathTracerParams::Mode::Clamped;
+    reference.spp = spp;
+    reference.jitterPixels = false;
+    renderer.technique().configureReference(reference, {});
+    return renderReference(scene, rays, camera, width, height, reference).image;
+}
+
 // Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.
 double meanAbsoluteRelative(const ImageRGBA32F& a, const ImageRGBA32F& b)
 {
@@ -245,13 +259,7 @@ TEST_CASE("ir: glossy indirect light on a metal floor like the matched path trac
     std::unique_ptr<Renderer> renderer =
         makeRenderer(scene, "ir", {{"ir.vplCount", "4096"}, {"ir.bounces", "1"}, {"ir.synchronous", "true"}});
     const Rendered gpu = renderIndirect(*renderer, camera, width, height);
-    RayScene rays(scene);
-    PathTracerParams reference;
-    reference.mode = PathTracerParams::Mode::Clamped;
-    reference.spp = 2048;
-    reference.jitterPixels = false;
-    renderer->technique().configureReference(reference, {});
-    const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
+    const ImageRGBA32F truth = clampedReference(scene, *renderer, camera, width, height, 2048);
     const double bias = meanLuminance(gpu.indirect) / meanLuminance(truth) - 1.0;
     const double error = test::relativeL1(gpu.indirect, truth);
     MEASURED("ir on the glossy metal floor (48x32, I = 4096, one bounce) vs the clamped path tracer (2048 spp): "
@@ -281,12 +289,7 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     // before the primary hit (the sampler's 3 radiosity bounces), clamped and untextured as the
     // technique asks (Technique::configureReference).
     RayScene rays(scene);
-    PathTracerParams reference;
-    reference.mode = PathTracerParams::Mode::Clamped;
-    reference.spp = 1024;
-    reference.jitterPixels = false;
-    renderer->technique().configureReference(reference, {});
-    const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
+    const ImageRGBA32F truth = clampedReference(scene, *renderer, camera, width, height, 1024);
 
     // Ceiling pixels: primary hits on a downward-facing surface that does not emit.
     const CameraRays cameraRays(camera, width, height);
