@@ -411,17 +411,9 @@ int runCompare(const std::vector<std::string>& args)
         require(std::count(o.techniques.begin(), o.techniques.end(), entry) == 1,
                 "--techniques: \"" + entry + "\" given twice");
         Settings settings = o.scene.settings;
-        const std::size_t open = entry.find('[');
-        if (open == std::string::npos) {
-            names.push_back(entry);
-        } else {
-            require(entry.back() == ']' && open > 0,
-                    "--techniques: \"" + entry + "\" must be name or name[key=value;key=value]");
-            names.push_back(entry.substr(0, open));
-            std::stringstream list(entry.substr(open + 1, entry.size() - open - 2));
-            for (std::string item; std::getline(list, item, ';');)
-                if (!item.empty()) settings.push_back(parseSetting(item));
-        }
+        const TechniqueEntry variant = parseTechniqueEntry(entry);
+        names.push_back(variant.technique);
+        settings.insert(settings.end(), variant.settings.begin(), variant.settings.end());
         perRun.push_back(settings);
     }
     std::vector<std::unique_ptr<Session>> sessions =

@@ -15,7 +15,11 @@
 //    the mean luminance against each reference, the tone-mapped mean |E| and its 99.9th percentile
 //    against the matched one, and with --frames >= 10 the drift: the mean indirect luminance of frames
 //    [0.9 N, N) over that of [0.4 N, 0.5 N), minus 1 (frames counted from the first, warm-up included);
-//  - over the seeds: each number's mean with a 95% Student-t interval.
+//  - over the seeds: each number's mean with a 95% Student-t interval;
+//  - on a scene with a camera "closed" (the sealed rooms: a closed room beside a lit one, where the
+//    path tracer gives exactly 0; the first camera is in the lit room), the same runs from inside
+//    the closed room too: the largest indirect luminance there over the lit room's mean (the
+//    largest over the seeds).
 // Output: a markdown table on stdout, DIR/conform.json (nlohmann::json), DIR/index.html with the
 // table and, per cell, the matched reference, the first seed's image and its error heat map.
 // --shard i/n runs the cells whose index (scenes outer, techniques inner) is i-1 modulo n;
@@ -78,7 +82,10 @@ std::optional<ConformOptions> parseConformOptions(const std::vector<std::string>
         "interval, tone-mapped |E| and its 99.9th percentile, drift over frames. Writes DIR/conform.json\n"
         "and DIR/index.html and prints a markdown table.");
     parser.value("scenes", "A,B,...", "scenes: built-in names or scene files (required unless --merge)");
-    parser.value("techniques", "all|A,B,...", "techniques (all: every technique with indirect light)", "all");
+    parser.value("techniques", "all|A,B,...",
+                 "techniques (all: every technique with indirect light); an entry may carry its own settings, "
+                 "name[key=value;key=value]",
+                 "all");
     parser.value("set", "KEY=VALUE",
                  "set a parameter of the renderer or a technique (repeatable; each key must "
                  "be known to one of the techniques)",
@@ -195,6 +202,10 @@ struct Cell {
     double matchedNoise = 0.0;       // the matched reference's second seed against its first (mean)
     double truthNoise = 0.0;
     double matchedMean = 0.0, truthMean = 0.0, techniqueMean = 0.0; // mean indirect luminance (seed 1)
+    // Scenes with a camera "closed" (the sealed rooms): the largest indirect luminance seen
+    // from inside the closed room, where the path tracer gives exactly 0, over the lit room's mean
+    // (the largest over the seeds); -1 for other scenes.
+    double sealedLeak = -1.0;
     std::string images; // "images/<cell>" prefix, empty when merged without images
 };
 
@@ -214,6 +225,7 @@ Json toJson(const Cell& c)
                 {"matchedMeanLuminance", c.matchedMean},
                 {"truthMeanLuminance", c.truthMean},
                 {"techniqueMeanLuminance", c.techniqueMean},
+                {"sealedLeak", c.sealedLeak >= 0.0 ? Json(c.sealedLeak) : Json()},
                 {"images", c.images}};
 }
 
@@ -234,6 +246,7 @@ Cell cellFromJson(const Json& j, const std::string& dir)
     c.matchedMean = j.at("matchedMeanLuminance").get<double>();
     c.truthMean = j.at("truthMeanLuminance").get<double>();
     c.techniqueMean = j.at("techniqueMeanLuminance").get<double>();
+    c.sealedLeak = j.at("sealedLeak").is_null() ? -1.0 : j.at("sealedLeak").get<double>();
     const std::string images = j.at("images").get<std::string>();
     c.images = images.empty() ? "" : dir + "/" + images;
     return c;
@@ -280,13 +293,17 @@ std::vector<std::string> seedKeys(Session& session)
     return keys;
 }
 
+// `technique` is a --techniques entry: name or name[key=value;...] (settings after --set's).
 SessionOptions sessionFor(const ConformOptions& o, const std::string& scene, const std::string& technique,
-                          const Settings& extra)
+                          const Settings& extra, const std::string& camera = "")
 {
+    const TechniqueEntry entry = parseTechniqueEntry(technique);
     SessionOptions options;
     options.sceneSpec = scene;
-    options.technique = technique;
+    options.technique = entry.technique;
+    options.camera = camera;
     options.settings = o.settings;
+    options.settings.insert(options.settings.end(), entry.settings.begin(), entry.settings.end());
     options.settings.insert(options.settings.end(), extra.begin(), extra.end());
     options.rejectUnknownSettings = false; // checked once for all techniques (createSessions)
     return options;
@@ -325,6 +342,9 @@ Cell runCell(const ConformOptions& o, const std::string& scene, const std::strin
     require(hasLight(probe.scene()), scene + ": the scene has no light (no light source, no emissive material)");
     const std::vector<std::string> keys = seedKeys(probe);
     cell.seeds = keys.empty() ? 1 : o.seeds;
+    // The sealed rooms: the first camera ("default") in the lit room, "closed" in the closed one.
+    const bool sealed = probe.scene().findCamera("closed") != nullptr;
+    double closedMax = 0.0, litMean = 0.0;
 
     ImageRGBA32F matched, truth;
     std::vector<double> matchedBias, truthBias, absE, p999, drift;
@@ -380,6 +400,18 @@ Cell runCell(const ConformOptions& o, const std::string& scene, const std::strin
             const double early = windowMean(0.4, 0.5);
             drift.push_back(early > 0.0 ? windowMean(0.9, 1.0) / early - 1.0 : 0.0);
         }
+        if (sealed) {
+            // The same technique and seed from inside the closed room: nothing may arrive there.
+            Session inside(sessionFor(o, scene, technique, extra, "closed"));
+            inside.createRenderer(ProgressSink{[](const std::string&, int, int) {}});
+            for (int frame = 0; frame < o.frames; ++frame)
+                inside.renderer().renderFrame(inside.camera(), o.size.width, o.size.height, 0.0f);
+            const ImageRGBA32F closedImage = indirectPart(inside.renderer());
+            for (std::size_t i = 0; i + 3 < closedImage.pixels.size(); i += 4)
+                closedMax = std::max(closedMax, 0.2126 * closedImage.pixels[i] + 0.7152 * closedImage.pixels[i + 1] +
+                                                    0.0722 * closedImage.pixels[i + 2]);
+            litMean += mean / cell.seeds;
+        }
         if (seed == 1) {
             cell.techniqueMean = mean;
             cell.images = "images/cell" + std::to_string(cellIndex);
@@ -394,6 +426,7 @@ Cell runCell(const ConformOptions& o, const std::string& scene, const std::strin
     cell.absE = intervalOf(absE);
     cell.p999 = intervalOf(p999);
     cell.drift = intervalOf(drift);
+    if (sealed) cell.sealedLeak = litMean > 0.0 ? closedMax / litMean : (closedMax > 0.0 ? 1e30 : 0.0);
     return cell;
 }
 
@@ -401,15 +434,16 @@ std::string markdownTable(const std::vector<Cell>& cells)
 {
     std::ostringstream t;
     t << "| scene | technique | seeds | matched reference | bias vs matched [95%] | bias vs all indirect [95%] | "
-         "tone-mapped \\|E\\| | 99.9th pct | drift [95%] | reference noise (matched, all) |\n"
-      << "|---|---|---|---|---|---|---|---|---|---|\n";
+         "tone-mapped \\|E\\| | 99.9th pct | drift [95%] | closed room max / lit mean | reference noise (matched, all) "
+         "|\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Cell& c : cells) {
         char noise[64];
         std::snprintf(noise, sizeof noise, "%+.2f%%, %+.2f%%", 100.0 * c.matchedNoise, 100.0 * c.truthNoise);
         t << "| " << c.scene << " | " << c.technique << " | " << c.seeds << " | " << c.matchedMode << " | "
           << percentText(c.matchedBias) << " | " << percentText(c.truthBias) << " | " << formatNumber(c.absE.mean, 3)
           << " | " << formatNumber(c.p999.mean, 3) << " | " << (c.drift.count ? percentText(c.drift) : "-") << " | "
-          << noise << " |\n";
+          << (c.sealedLeak >= 0.0 ? formatNumber(c.sealedLeak, 3) : "-") << " | " << noise << " |\n";
     }
     return t.str();
 }
@@ -425,12 +459,14 @@ std::string htmlReport(const std::vector<Cell>& cells, const std::string& comman
          "against each reference, with 95% Student-t intervals over the seeds; |E| is tone-mapped, against the "
          "matched reference. Images: the matched reference, the first seed's indirect light, |E| (0 to 0.25).</p>"
          "<table><tr><th>scene</th><th>technique</th><th>seeds</th><th>matched reference</th><th>bias vs matched</th>"
-         "<th>bias vs all indirect</th><th>|E|</th><th>99.9th pct</th><th>drift</th><th>images</th></tr>";
+         "<th>bias vs all indirect</th><th>|E|</th><th>99.9th pct</th><th>drift</th><th>closed room max / lit mean</th>"
+         "<th>images</th></tr>";
     for (const Cell& c : cells) {
         h << "<tr><td>" << htmlEscape(c.scene) << "</td><td>" << htmlEscape(c.technique) << "</td><td>" << c.seeds
           << "</td><td>" << htmlEscape(c.matchedMode) << "</td><td>" << percentText(c.matchedBias) << "</td><td>"
           << percentText(c.truthBias) << "</td><td>" << formatNumber(c.absE.mean, 3) << "</td><td>"
-          << formatNumber(c.p999.mean, 3) << "</td><td>" << (c.drift.count ? percentText(c.drift) : "-") << "</td><td>";
+          << formatNumber(c.p999.mean, 3) << "</td><td>" << (c.drift.count ? percentText(c.drift) : "-") << "</td><td>"
+          << (c.sealedLeak >= 0.0 ? formatNumber(c.sealedLeak, 3) : "-") << "</td><td>";
         if (!c.images.empty())
             for (const char* part : {"-matched.png", "-technique.png", "-error.png"})
                 h << "<img src=\"" << htmlEscape(c.images + part) << "\">";
@@ -493,8 +529,16 @@ int runConform(const std::vector<std::string>& args)
         }
     } else {
         // Every --set key must be known to one of the techniques, on every scene (before any GL work).
+        std::vector<std::string> names;
+        std::vector<Settings> settings;
+        for (const std::string& entry : o.techniques) {
+            const TechniqueEntry variant = parseTechniqueEntry(entry);
+            names.push_back(variant.technique);
+            settings.push_back(o.settings);
+            settings.back().insert(settings.back().end(), variant.settings.begin(), variant.settings.end());
+        }
         for (const std::string& scene : o.scenes)
-            createSessions(scene, "", o.techniques, std::vector<Settings>(o.techniques.size(), o.settings));
+            createSessions(scene, "", names, settings);
         std::filesystem::create_directories(o.writeDir + "/images");
         std::unique_ptr<gl::Context> context = gl::createHeadlessContext();
         int index = 0;

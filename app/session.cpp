@@ -1,5 +1,7 @@
 #include "session.h"
 
+#include <sstream>
+
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "cli.h"
@@ -173,6 +175,23 @@ ImageRGBA32F indirectPart(const Renderer& renderer)
     for (std::size_t i = 0; i < total.pixels.size(); ++i)
         if (i % 4 != 3) total.pixels[i] -= direct.pixels[i];
     return total;
+}
+
+TechniqueEntry parseTechniqueEntry(const std::string& entry)
+{
+    TechniqueEntry result;
+    const std::size_t open = entry.find('[');
+    if (open == std::string::npos) {
+        result.technique = entry;
+        return result;
+    }
+    require(entry.back() == ']' && open > 0,
+            "--techniques: \"" + entry + "\" must be name or name[key=value;key=value]");
+    result.technique = entry.substr(0, open);
+    std::stringstream list(entry.substr(open + 1, entry.size() - open - 2));
+    for (std::string item; std::getline(list, item, ';');)
+        if (!item.empty()) result.settings.push_back(parseSetting(item));
+    return result;
 }
 
 } // namespace vplgi

@@ -68,6 +68,14 @@ SessionOptions sessionOptions(const OptionParser& parser);
 // Throws Error naming the cameras there are.
 const Camera& resolveCamera(Scene& scene, const std::string& name);
 
+// "name" or "name[key=value;key=value]" (compare's and conform's --techniques): the technique and
+// the settings it gets after the command's --set ones. Throws Error on a malformed entry.
+struct TechniqueEntry {
+    std::string technique;
+    Settings settings;
+};
+TechniqueEntry parseTechniqueEntry(const std::string& entry);
+
 // A technique's radiance minus its direct light: the indirect part (compare's indirect, clamped and
 // onebounce references, conform).
 ImageRGBA32F indirectPart(const Renderer& renderer);

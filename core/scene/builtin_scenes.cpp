@@ -1110,9 +1110,116 @@ Scene makeGlossy()
 
 } // namespace
 
+// ---------------------------------------------------------------------------------------------
+// sealed (conform's leak test): a room lit through a roof window beside a closed room
+
+// The inside of the box [lower, upper], every face towards the inside, without its ceiling.
+void addRoomWithoutCeiling(Mesh& mesh, const glm::vec3& lower, const glm::vec3& upper, float cell)
+{
+    const glm::vec3 size = upper - lower;
+    const glm::vec3 dx(size.x, 0.0f, 0.0f), dy(0.0f, size.y, 0.0f), dz(0.0f, 0.0f, size.z);
+    addRect(mesh, lower, dz, dx, cell);                                // floor, +y
+    addRect(mesh, lower, dy, dz, cell);                                // x = lower.x, +x
+    addRect(mesh, glm::vec3(upper.x, lower.y, lower.z), dz, dy, cell); // x = upper.x, -x
+    addRect(mesh, lower, dx, dy, cell);                                // z = lower.z, +z
+    addRect(mesh, glm::vec3(lower.x, lower.y, upper.z), dy, dx, cell); // z = upper.z, -z
+}
+
+// The rectangle x in [x0, x1], z in [z0, z1] at height y, facing down (-y) or up (+y), minus the
+// hole [hx0, hx1] x [hz0, hz1] (an empty hole: the whole rectangle).
+void addSlabFace(Mesh& mesh, float y, float x0, float x1, float z0, float z1, const glm::vec4& hole, bool up,
+                 float cell)
+{
+    auto rect = [&](float a0, float a1, float b0, float b1) {
+        if (!(a1 > a0) || !(b1 > b0)) return;
+        const glm::vec3 dx(a1 - a0, 0.0f, 0.0f), dz(0.0f, 0.0f, b1 - b0), origin(a0, y, b0);
+        if (up) addRect(mesh, origin, dz, dx, cell); // z cross x = +y
+        else addRect(mesh, origin, dx, dz, cell);    // x cross z = -y
+    };
+    if (!(hole.y > hole.x)) {
+        rect(x0, x1, z0, z1);
+        return;
+    }
+    rect(x0, hole.x, z0, z1);
+    rect(hole.y, x1, z0, z1);
+    rect(hole.x, hole.y, z0, hole.z);
+    rect(hole.x, hole.y, hole.w, z1);
+}
+
+// Two rooms side by side along x behind solid walls 10 cm thick: the lit room (x in [-4, 0]) has a
+// 2 x 2 m window in its roof, the closed room (x in [0.1, 4.1]) has no opening at all, so no path
+// of light reaches its inside and the path tracer gives exactly 0 there. Each room is its own mesh
+// of single-sided faces towards its inside; the building's outer shell (walls, floor, roof around
+// the window, the window's reveals) faces outwards. Both floors lie in one plane with one normal,
+// as do both ceilings, on either side of the shared wall: what a leak through a wall joint, an
+// imperfect shadow map or a cache interpolated across the wall shows. Cameras: "default" (in the lit
+// room) and "closed"; `light` picks the one light: "sun" (through the window), "point", "spot", "emissive".
+Scene makeSealed(const std::string& light)
+{
+    Scene scene = newScene(light == "sun" ? "sealed" : "sealed-" + light);
+    const int white = addMaterial(scene, "plaster", glm::vec3(0.7f));
+    const float cell = 0.5f, height = 3.0f, wall = 0.1f;
+    const glm::vec4 window(-3.0f, -1.0f, -1.0f, 1.0f); // x0, x1, z0, z1 of the roof window
+    const glm::vec4 none(0.0f);
+
+    // The lit room: floor and walls, the ceiling around the window; the closed room, all six faces.
+    Mesh lit = newMesh("lit room", white);
+    addRoomWithoutCeiling(lit, glm::vec3(-4.0f, 0.0f, -2.0f), glm::vec3(0.0f, height, 2.0f), cell);
+    addSlabFace(lit, height, -4.0f, 0.0f, -2.0f, 2.0f, window, false, cell);
+    Mesh closed = newMesh("closed room", white);
+    addRoomWithoutCeiling(closed, glm::vec3(0.1f, 0.0f, -2.0f), glm::vec3(4.1f, height, 2.0f), cell);
+    addSlabFace(closed, height, 0.1f, 4.1f, -2.0f, 2.0f, none, false, cell);
+
+    // The outer shell, facing out, and the window's reveals through the roof, facing into the hole.
+    Mesh shell = newMesh("shell", white);
+    const glm::vec3 lower(-4.0f - wall, -wall, -2.0f - wall), upper(4.1f + wall, height + wall, 2.0f + wall);
+    const glm::vec3 size = upper - lower;
+    const glm::vec3 dx(size.x, 0.0f, 0.0f), dy(0.0f, size.y, 0.0f), dz(0.0f, 0.0f, size.z);
+    addRect(shell, glm::vec3(upper.x, lower.y, lower.z), dy, dz, cell); // +x
+    addRect(shell, lower, dz, dy, cell);                                // -x
+    addRect(shell, lower, dx, dz, cell);                                // -y
+    addRect(shell, glm::vec3(lower.x, lower.y, upper.z), dx, dy, cell); // +z
+    addRect(shell, lower, dy, dx, cell);                                // -z
+    addSlabFace(shell, upper.y, lower.x, upper.x, lower.z, upper.z, window, true, cell);
+    const glm::vec3 reveal(0.0f, wall, 0.0f), wx(window.y - window.x, 0.0f, 0.0f), wz(0.0f, 0.0f, window.w - window.z);
+    addRect(shell, glm::vec3(window.x, height, window.z), reveal, wz, cell); // +x
+    addRect(shell, glm::vec3(window.y, height, window.z), wz, reveal, cell); // -x
+    addRect(shell, glm::vec3(window.x, height, window.z), wx, reveal, cell); // +z
+    addRect(shell, glm::vec3(window.x, height, window.w), reveal, wx, cell); // -z
+
+    if (light == "emissive") {
+        // A 0.6 x 0.6 m panel just under the lit room's ceiling, facing down.
+        const int panel = addMaterial(scene, "panel", glm::vec3(0.0f));
+        scene.materials[static_cast<std::size_t>(panel)].emission = glm::vec3(12.0f);
+        Mesh lamp = newMesh("panel", panel);
+        addSlabFace(lamp, height - 0.01f, -3.8f, -3.2f, -1.8f, -1.2f, none, false, 1.0f);
+        placeMesh(scene, std::move(lamp));
+    } else if (light == "point") {
+        scene.lights.push_back(makePointLight("lamp", glm::vec3(-2.0f, 2.2f, 0.0f), glm::vec3(1.0f), 6.0f));
+    } else if (light == "spot") {
+        scene.lights.push_back(makeSpotLight("spot", glm::vec3(-3.6f, 2.6f, 1.6f), glm::vec3(-1.5f, 0.0f, -0.5f),
+                                             glm::vec3(1.0f), 30.0f, 20.0f, 30.0f));
+    } else {
+        Light sun;
+        sun.name = "sun";
+        sun.type = LightType::Directional;
+        sun.direction = glm::normalize(glm::vec3(0.25f, -1.0f, 0.15f));
+        sun.intensity = 3.0f;
+        scene.lights.push_back(sun);
+    }
+    for (Mesh* mesh : {&lit, &closed, &shell}) placeMesh(scene, std::move(*mesh));
+    scene.cameras.push_back(makeCamera("default", glm::vec3(-0.4f, 1.7f, 1.7f), glm::vec3(-2.6f, 0.6f, -1.0f), 70.0f,
+                                       0.05f, 30.0f));
+    scene.cameras.push_back(makeCamera("closed", glm::vec3(3.8f, 1.7f, 1.7f), glm::vec3(0.6f, 0.8f, -1.4f), 70.0f,
+                                       0.05f, 30.0f));
+    scene.validate();
+    return scene;
+}
+
 std::vector<std::string> builtinSceneNames()
 {
-    return {"canyon", "caustics", "cornell", "furnace", "glossy", "maze", "street"};
+    return {"canyon", "caustics", "cornell", "furnace", "glossy", "maze", "sealed", "sealed-emissive", "sealed-point",
+            "sealed-spot", "street"};
 }
 
 bool isBuiltinScene(const std::string& name)
@@ -1129,6 +1236,10 @@ Scene makeBuiltinScene(const std::string& name)
     if (name == "furnace") return makeFurnace(FurnaceParams{});
     if (name == "glossy") return makeGlossy();
     if (name == "maze") return makeMaze();
+    if (name == "sealed") return makeSealed("sun");
+    if (name == "sealed-emissive") return makeSealed("emissive");
+    if (name == "sealed-point") return makeSealed("point");
+    if (name == "sealed-spot") return makeSealed("spot");
     if (name == "street") return makeStreet();
     std::string known;
     for (const std::string& builtin : builtinSceneNames()) known += (known.empty() ? "" : ", ") + builtin;

@@ -1,4 +1,5 @@
-// Scenes vplgi generates itself (no external assets): canyon, caustics, cornell, furnace, glossy, maze, street.
+// Scenes vplgi generates itself (no external assets): canyon, caustics, cornell, furnace, glossy, maze,
+// sealed (sealed-emissive, sealed-point, sealed-spot: the same rooms, one light type each), street.
 #pragma once
 
 #include <string>

@@ -76,6 +76,9 @@ void PathTracerParams::visitParams(ParamVisitor& v)
     v.field("reference.untexturedBounces", untexturedBounces,
             "beyond the primary hit, mean material albedos and no normal maps (SMCIR 5: the reference for VPLs "
             "made on an untextured scene)");
+    v.field("reference.diffuseVertices", diffuseVertices, 0, 2,
+            "vertices after the primary hit reflecting with their diffuse lobe only, as VPLs: 0 none, 1 the "
+            "first (SMCIR), 2 every one (IR)");
 }
 
 namespace {
@@ -519,6 +522,12 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
             if (!hit.valid()) break; // no environment light
             wo = -ray.direction;
             s = surfaceAt(mScene, hit, wo, depth >= 1 ? mUntextured : nullptr);
+            if (depth >= 1 && (mParams.diffuseVertices >= 2 || (mParams.diffuseVertices == 1 && depth == 1))) {
+                // A VPL's Lambert assumption (SMCIR 3.1): its diffuse lobe, as the samplers reflect.
+                s.material.baseColor *= 1.0f - s.material.metallic;
+                s.material.metallic = 0.0f;
+                s.material.specular = 0.0f;
+            }
 
             if (mParams.mode == Mode::Clamped && depth == 1) {
                 // SMCIR Sec. 5.4: clamp G of the segment x0 -> x1 as VPL methods clamp it (MATH.md 1.2 a).

@@ -166,10 +166,14 @@ struct PathTracerParams {
                                   // without MSAA samples (for GPU-vs-reference checks at edges)
     bool untexturedBounces = false; // vertices after the primary hit use UntexturedMaterials (mean
                                     // albedos, no normal maps): SMCIR 5's reference for its VPLs
+    int diffuseVertices = 0;        // vertices after the primary hit that reflect with their diffuse lobe
+                                    // only ((1 - metallic) baseColor / pi), as VPLs do: 0 none, 1 the
+                                    // first (SMCIR: the VPL's Lambert assumption, its radiance paths
+                                    // keep the BRDF), 2 every one (IR: light paths of diffuse bounces)
 
     // Keys "reference.<field>": spp, maxDepth, rrStartDepth, mode (0 full, 1 direct, 2 indirect,
     // 3 clamped, 4 onebounce), clampGeometry, seed, timeBudgetSeconds [0, 1e7] (visited as a float), progress,
-    // jitterPixels.
+    // jitterPixels, untexturedBounces, diffuseVertices.
     void visitParams(ParamVisitor& visitor);
 };
 

@@ -72,8 +72,9 @@ float computeClampGeometry(const SMCIRParams& params, float sceneDiagonal)
 void configureSMCIRReference(const SMCIRParams& params, float sceneDiagonal, PathTracerParams& reference,
                              const std::set<std::string>& explicitKeys)
 {
+    // The VPL reflects its diffuse lobe (3.1); its radiance paths (ReflectedRadianceEstimator) keep the BRDF.
     configureVPLReference(params.texturedVPLs, computeClampGeometry(params, sceneDiagonal), params.radiosityBounces,
-                          reference, explicitKeys);
+                          1, reference, explicitKeys);
 }
 
 int computeRenderingK(int vplCount)

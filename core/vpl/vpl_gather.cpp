@@ -16,9 +16,10 @@ float clampGeometryFor(float clampScale, int vplCount, float sceneDiagonal)
     return 1.0f / (d * d);
 }
 
-void configureVPLReference(bool texturedVPLs, float clampGeometry, int vplBounces, PathTracerParams& reference,
-                           const std::set<std::string>& explicitKeys)
+void configureVPLReference(bool texturedVPLs, float clampGeometry, int vplBounces, int diffuseVertices,
+                           PathTracerParams& reference, const std::set<std::string>& explicitKeys)
 {
+    if (!explicitKeys.count("reference.diffuseVertices")) reference.diffuseVertices = diffuseVertices;
     if (!explicitKeys.count("reference.untexturedBounces")) reference.untexturedBounces = !texturedVPLs;
     if (!explicitKeys.count("reference.clampGeometry") && clampGeometry > 0.0f) reference.clampGeometry = clampGeometry;
     if (!explicitKeys.count("reference.maxDepth")) reference.maxDepth = 1 + vplBounces;

@@ -36,10 +36,12 @@ float clampGeometryFor(float clampScale, int vplCount, float sceneDiagonal);
 // What a path-traced reference must simulate to be compared with a VPL method (smcir, smcir-rt, ir):
 // untextured bounces unless its VPLs see textures (SMCIR section 5), the same clamp (5.4; 0 =
 // none), and the same bounce cap: the reflection at the primary hit plus `vplBounces`, the most
-// reflections the light a VPL carries has undergone, counting the one at the VPL. Keys in
-// `explicitKeys` (reference.*) are left as the user set them.
-void configureVPLReference(bool texturedVPLs, float clampGeometry, int vplBounces, PathTracerParams& reference,
-                           const std::set<std::string>& explicitKeys);
+// reflections the light a VPL carries has undergone, counting the one at the VPL, and the VPLs'
+// Lambert assumption: `diffuseVertices` (reference.diffuseVertices: 1 for SMCIR, whose VPL reflects its
+// diffuse lobe while its radiance paths keep the BRDF; 2 for IR, whose light paths bounce diffusely).
+// Keys in `explicitKeys` (reference.*) are left as the user set them.
+void configureVPLReference(bool texturedVPLs, float clampGeometry, int vplBounces, int diffuseVertices,
+                           PathTracerParams& reference, const std::set<std::string>& explicitKeys);
 
 // Indirect radiance reflected at `point` towards `wo` (unit, away from the surface), from the VPLs
 // of interleaving class `subset` (slots i with i mod tile^2 = subset; all of them when tile = 1).

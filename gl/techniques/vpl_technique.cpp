@@ -394,7 +394,8 @@ void VPLTechnique::configureReference(PathTracerParams& params, const std::set<s
     }
     // IR as SMCIR (section 5 compares every method against the same reference). A VPL deposited at
     // hit j carries light reflected j times counting the one at the VPL: at most ir.bounces.
-    configureVPLReference(mIR.texturedVPLs, clampGeometry(), mIR.bounces, params, explicitKeys);
+    // Every IR bounce is diffuse (rho_d cosine sampling, core/vpl/ir_sampler.h): diffuse at every vertex >= 1.
+    configureVPLReference(mIR.texturedVPLs, clampGeometry(), mIR.bounces, 2, params, explicitKeys);
 }
 
 std::vector<DebugView> VPLTechnique::debugViews() const

@@ -4,8 +4,11 @@
 # the same bits), so the bounds apply to values. For each cell of tests/cli/conform_expected.json:
 #  - a cell that lights today (its mean indirect light > 0) must still add indirect light;
 #  - its bias against the matched reference must stay within max(2x today's |bias|, 3 points);
-#  - a known failure (today's wrong cells, each with the issue that fixes it) is printed, not
-#    asserted: the issue that fixes it moves the cell under the bounds (and out of "known").
+#  - on the sealed rooms, the closed room's largest indirect luminance over the lit room's mean must
+#    stay below 1e-4 (the path tracer gives exactly 0 there);
+#  - a known failure (today's wrong cells, each with the issue that fixes it: "known" for the bias,
+#    "knownLeak" for the sealed room) is printed, not asserted: the issue that fixes it moves the
+#    cell under the bounds (and out of "known").
 # With --update, writes today's values as the new expectations (keeping the known-failure notes).
 set -eu
 vplgi="$1"
@@ -14,7 +17,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 expected="$here/conform_expected.json"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$vplgi" conform --scenes cornell,glossy,furnace --techniques all --seeds 2 --width 24 --height 16 --spp 256 \
+"$vplgi" conform --scenes cornell,glossy,furnace,sealed --techniques all --seeds 2 --width 24 --height 16 --spp 256 \
   --set smcir.vplCount=256 --set smcir.warmupIterations=5 --set ir.vplCount=256 --set rsm.size=64 \
   --set vsgl.count=256 --set vpl-brsm.count=256 --cache "$work/cache" --out "$work/c" > "$work/table.md" 2> "$work/err.log" \
   || { cat "$work/err.log"; exit 1; }
@@ -31,6 +34,9 @@ if update:
         expected["cells"][name] = {"bias": round(c["biasMatched"]["mean"], 5),
                                    "lights": c["techniqueMeanLuminance"] > 0,
                                    "known": old.get("known", "")}
+        if c["sealedLeak"] is not None:
+            expected["cells"][name]["leak"] = c["sealedLeak"]
+            expected["cells"][name]["knownLeak"] = old.get("knownLeak", "")
     open(path, "w").write(json.dumps(expected, indent=2, sort_keys=True) + "\n")
     print("wrote", path); sys.exit(0)
 failures = 0
@@ -42,6 +48,14 @@ for name, e in sorted(expected["cells"].items()):
     c = measured[key]
     bias, mean = c["biasMatched"]["mean"], c["techniqueMeanLuminance"]
     bound = max(2 * abs(e["bias"]), 0.03)
+    if "leak" in e:
+        leak = c["sealedLeak"]
+        if e["knownLeak"]:
+            print("known failure (%s): %s: closed room max / lit mean %.4g (today %.4g)" % (e["knownLeak"], name, leak, e["leak"]))
+        else:
+            ok = leak is not None and leak < 1e-4
+            print("%s: %s: closed room max / lit mean %s (bound 1e-4)" % ("ok" if ok else "FAIL", name, leak))
+            failures += 0 if ok else 1
     if e["known"]:
         print("known failure (%s): %s: bias %+.4f (today %+.4f)" % (e["known"], name, bias, e["bias"]))
         continue

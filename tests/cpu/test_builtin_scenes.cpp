@@ -117,7 +117,9 @@ int materialIndex(const Scene& scene, const std::string& name)
 
 TEST_CASE("builtin scenes: names, validity, default camera, source")
 {
-    const std::vector<std::string> expected{"canyon", "caustics", "cornell", "furnace", "glossy", "maze", "street"};
+    const std::vector<std::string> expected{"canyon",          "caustics",     "cornell",     "furnace",
+                                            "glossy",          "maze",         "sealed",      "sealed-emissive",
+                                            "sealed-point",    "sealed-spot",  "street"};
     REQUIRE(builtinSceneNames() == expected);
     CHECK_FALSE(isBuiltinScene("Cornell"));
     CHECK_FALSE(isBuiltinScene(""));
@@ -142,7 +144,7 @@ TEST_CASE("builtin scenes: unknown name throws Error naming the choices")
 {
     CHECK_THROWS_AS(makeBuiltinScene("nope"), Error);
     CHECK_THROWS_WITH(makeBuiltinScene("nope"),
-                      "unknown scene \"nope\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, street)");
+                      "unknown scene \"nope\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
 }
 
 TEST_CASE("builtin scenes: triangle winding agrees with the vertex normals")
@@ -189,6 +191,11 @@ TEST_CASE("builtin scenes: every surface seen from open space shows its front")
         // Canyon: over the road, above both rows of roofs, and beyond both open ends.
         {"canyon", {glm::vec3(0.0f, 5.0f, 0.0f), glm::vec3(-20.0f, 40.0f, 0.0f), glm::vec3(20.0f, 40.0f, 0.0f),
                     glm::vec3(0.0f, 3.0f, -40.0f), glm::vec3(0.0f, 3.0f, 40.0f), glm::vec3(-6.0f, 1.0f, -12.0f)}},
+        // Sealed: inside both rooms, above the roof (through the window too), beside and below the building.
+        {"sealed", {glm::vec3(-2.0f, 1.5f, 0.0f), glm::vec3(2.0f, 1.5f, 0.0f), glm::vec3(0.0f, 6.0f, 0.0f),
+                    glm::vec3(-2.0f, 8.0f, 0.0f), glm::vec3(9.0f, 1.5f, 0.0f), glm::vec3(0.0f, 1.5f, 6.0f),
+                    glm::vec3(0.0f, -3.0f, 0.0f)}},
+        {"sealed-emissive", {glm::vec3(-3.5f, 1.5f, -1.5f), glm::vec3(2.0f, 1.5f, 0.0f)}},
         {"maze", {}}, // last: its viewpoints are added below
     };
     // Street: above both rows of roofs.
@@ -942,3 +949,32 @@ TEST_CASE("glossy: normal maps decode to unit normals that tilt both ways and av
     }
     CHECK(normalMapped >= 2);
 }
+
+TEST_CASE("sealed rooms: the path tracer gives exactly 0 in the closed room, light in the lit one", "[reference]")
+{
+    // conform's leak test relies on this: no path of light reaches the closed room's inside, for
+    // every light type (the sun through the lit room's window, a point, a spot, an emissive panel).
+    for (const char* name : {"sealed", "sealed-point", "sealed-spot", "sealed-emissive"}) {
+        INFO(name);
+        const Scene scene = makeBuiltinScene(name);
+        const RayScene rays(scene);
+        PathTracerParams params;
+        params.spp = 16;
+        params.maxDepth = 6;
+        const Camera* closed = scene.findCamera("closed");
+        const Camera* lit = scene.findCamera("default");
+        REQUIRE(closed);
+        REQUIRE(lit);
+        const ImageRGBA32F inside = renderReference(scene, rays, *closed, 24, 16, params).image;
+        double closedSum = 0.0;
+        for (std::size_t i = 0; i < inside.pixels.size(); i += 4)
+            closedSum += inside.pixels[i] + inside.pixels[i + 1] + inside.pixels[i + 2];
+        CHECK(closedSum == 0.0);
+        const ImageRGBA32F outside = renderReference(scene, rays, *lit, 24, 16, params).image;
+        int litPixels = 0;
+        for (std::size_t i = 0; i < outside.pixels.size(); i += 4)
+            litPixels += outside.pixels[i] + outside.pixels[i + 1] + outside.pixels[i + 2] > 0.0f ? 1 : 0;
+        CHECK(litPixels > 24 * 16 / 2); // direct or bounced light reaches most of the lit room's view
+    }
+}
+

@@ -975,7 +975,7 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
         "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0]}]})") ==
           path + ": cameras[0]: \"target\" must be an array of 3 numbers");
     CHECK(errorFor(R"({"source": "builtin:nope"})") ==
-          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, street)");
+          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
     CHECK(errorFor(R"({"source": "obj:x.obj"})") ==
           path + ": \"source\" must start with \"builtin:\" or \"gltf:\" (got \"obj:x.obj\")");
     CHECK(errorFor(R"({"name": "x"})") == path + ": needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -1008,7 +1008,7 @@ TEST_CASE("loadSceneSpec resolves built-in names and paths", "[scene_loader]")
     CHECK_FALSE(cornell.scene.cameras.empty());
 
     CHECK(errorOf([] { vplgi::loadSceneSpec("cornel"); }) ==
-          "unknown scene \"cornel\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, street; or a .json/.gltf/.glb path)");
+          "unknown scene \"cornel\" (built-in scenes: canyon, caustics, cornell, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street; or a .json/.gltf/.glb path)");
     const std::string missing = dir.file("missing.json");
     CHECK(errorOf([&] { vplgi::loadSceneSpec(missing); }) == missing + ": no such file");
 
@@ -1019,6 +1019,26 @@ TEST_CASE("loadSceneSpec resolves built-in names and paths", "[scene_loader]")
     CHECK(vplgi::loadSceneSpec(dir.file("tri.glb")).scene.triangleCount() == 1);
     writeFile(dir.file("tri.obj"), "v 0 0 0\n");
     CHECK_THAT(errorOf([&] { vplgi::loadSceneSpec(dir.file("tri.obj")); }), Contains("not a scene"));
+}
+
+TEST_CASE("scene files of the shared glTF scenes load with their lights and cameras", "[scene_loader][shared]")
+{
+    // scenes/shared/*.json light the ../shared glTFs as their sources do (scenes/shared/README.md);
+    // they name ../shared beside the repository.
+    if (!vplgi::test::findSharedAsset("scenes")) return;
+    const fs::path dir = fs::path(VPLGI_SOURCE_DIR) / "scenes" / "shared";
+    int loaded = 0;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+        if (entry.path().extension() != ".json") continue;
+        INFO(entry.path().string());
+        const vplgi::SceneDescription d = vplgi::loadSceneFile(entry.path().string());
+        CHECK(d.scene.lights.size() == 1);
+        REQUIRE(!d.scene.cameras.empty());
+        CHECK(d.scene.cameras[0].name == "default");
+        CHECK(d.scene.triangleCount() > 10);
+        ++loaded;
+    }
+    CHECK(loaded == 4);
 }
 
 TEST_CASE("scene files of the repository load and animate", "[scene_loader]")
