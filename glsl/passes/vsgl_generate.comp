@@ -13,8 +13,14 @@
 //    is sum_j Phi_h(j), which over-counts bright texels next to dim ones (a dim texel's large
 //    footprint reaches into its bright neighbours): +15% in the normal-mapped glossy room. With
 //    leaf cells (a partition: the criterion is monotone up the mip chain, so every texel of a
-//    leaf finds that leaf) and q = P_cell it is sum_cells P_cell Phi_cell / P_cell, exact; the
-//    bilinear footprint at the leaf's level keeps it close while moving smoothly with the draw.
+//    leaf finds that leaf) and q = P_cell it would be sum_cells P_cell Phi_cell / P_cell, exact, with
+//    flux and probability read from the leaf cell itself. Here both are read bilinearly at the
+//    leaf's level (a bilinear flux over a bilinear probability), which moves smoothly with the draw
+//    but is not unbiased: over 8 seeds in the glossy room vsgl is 0.944x vpl-brsm from the same draws
+//    (+1.2% [+0.3, +2.1] against the one-bounce path tracer where vpl-brsm is +7.2% [+5.3, +9.1]:
+//    `vplgi conform --scenes glossy --techniques vsgl,vpl-brsm,lightskin --seeds 8 --width 64
+//    --height 36 --spp 1024`, docs/conformance.md). Reading the leaf cell exactly is issue "VSGL
+//    made exact".
 //  uMode 1, the same draws as VPLs (baseline vpl-brsm, eq. 1): level 0, no filtering, r = 0.
 //  uMode 2, a grid (the view lights): every texel of level uLevel is a light, flux 4^L Phi_L.
 #include "shared/bindings.h"
@@ -72,7 +78,7 @@ void main()
             return;
         }
         texel = ivec3(s.x % uSize, s.y, s.x / uSize); // the importance map holds the layers side by side
-        fluxScale = 1.0 / (float(uCount) * s.probability); // Phi / (N P_j): an unbiased N-draw estimator
+        fluxScale = 1.0 / (float(uCount) * s.probability); // Phi / (N P_j): unbiased for Phi_j, not for a footprint
         if (uMode == 0) {
             filtered = true;
             if (uFootprint == 0) {
