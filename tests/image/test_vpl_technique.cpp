@@ -422,8 +422,13 @@ TEST_CASE("smcir on the shared CornellBox.glb (millimetres): shadow maps agree w
     // Measured -0.23% / -0.31% and 1.1% / 0.98%: limits about 3x.
     CHECK(std::abs(againstRays) < 0.01);
     CHECK(pixelsAgainstRays < 0.03);
-    // Measured +5.8% (+23% before new VPLs got radiance estimates independent of their selection):
-    // SMCIR's own bias at I = 512, which moves with the sampler; the bound catches a wrong unit or a
-    // missing bounce (a bounce is 40-50% of this light).
-    CHECK(std::abs(againstPath) < 0.2);
+    // Measured +20.0%: SMCIR's own bias at I = 512, which moves with the sampler ("SMCIR without
+    // drift"), against the matched reference, whose VPL vertex reflects the diffuse lobe only as the
+    // VPLs do (reference.diffuseVertices = 1). This box's dielectrics (roughness 0.5, F0 0.04) also
+    // reflect specularly there: the old reference kept that, 13% more light, which hid most of the
+    // bias (+3.9%; +23% before new VPLs got radiance estimates independent of their selection). The
+    // band is one-sided around the measured bias; a wrong unit or a missing bounce (40-50% of this
+    // light) leaves it.
+    CHECK(againstPath > 0.05);
+    CHECK(againstPath < 0.35);
 }
