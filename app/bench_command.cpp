@@ -7,6 +7,8 @@
 #include <memory>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli.h"
 #include "commands.h"
 #include "core/util/error.h"
@@ -20,6 +22,8 @@
 namespace vplgi {
 
 namespace {
+
+using Json = nlohmann::ordered_json;
 
 struct PassStats {
     std::vector<double> samples; // [ms] per frame in which the pass ran
@@ -93,23 +97,20 @@ std::string markdown(const BenchResult& r, int frames)
     return s.str();
 }
 
-std::string jsonOf(const BenchResult& r)
+Json jsonOf(const BenchResult& r)
 {
-    std::ostringstream s;
-    s << "{\"technique\": \"" << r.technique << "\", \"passes\": [";
-    for (std::size_t i = 0; i < r.order.size(); ++i) {
-        const PassStats& p = r.passes.at(r.order[i]);
-        s << (i ? ", " : "") << "{\"name\": \"" << r.order[i] << "\", \"medianMs\": " << p.median()
-          << ", \"minMs\": " << p.min() << ", \"maxMs\": " << p.max() << ", \"frames\": " << p.samples.size() << "}";
+    Json passes = Json::array();
+    for (const std::string& name : r.order) {
+        const PassStats& p = r.passes.at(name);
+        passes.push_back({{"name", name},
+                          {"medianMs", p.median()},
+                          {"minMs", p.min()},
+                          {"maxMs", p.max()},
+                          {"frames", p.samples.size()}});
     }
-    s << "], \"totalMedianMs\": " << r.total.median() << ", \"stats\": {";
-    bool first = true;
-    for (const auto& [name, p] : r.stats) {
-        s << (first ? "" : ", ") << "\"" << name << "\": " << p.median();
-        first = false;
-    }
-    s << "}}";
-    return s.str();
+    Json stats = Json::object();
+    for (const auto& [name, p] : r.stats) stats[name] = p.median();
+    return {{"technique", r.technique}, {"passes", passes}, {"totalMedianMs", r.total.median()}, {"stats", stats}};
 }
 
 // A pass name with the technique's own name replaced by "<technique>", so that two techniques'
@@ -192,10 +193,10 @@ void printRSMTable(const std::vector<BenchResult>& results, const std::vector<st
 
 // Ray efficiency of CPU stages that report their rays: the very rays the stage cast in a frame,
 // replayed alone on the same threads, over the stage's wall time (SMCIR's goal: >= 0.75). Prints one
-// line per run that reports its rays; returns the items of the JSON array.
-std::string rayEfficiency(const std::vector<BenchResult>& results)
+// line per run that reports its rays; returns the JSON array.
+Json rayEfficiency(const std::vector<BenchResult>& results)
 {
-    std::string efficiencyJson;
+    Json efficiency = Json::array();
     for (const BenchResult& r : results) {
         auto rays = r.stats.find("sampler: rays");
         auto total = r.stats.find("sampler: total ms");
@@ -206,16 +207,17 @@ std::string rayEfficiency(const std::vector<BenchResult>& results)
                         "the step alone on the render thread)\n\n", r.technique.c_str());
             continue;
         }
-        const double efficiency = replay->second.median() / total->second.median();
+        const double ratio = replay->second.median() / total->second.median();
         std::printf("%s: sampler %.0f rays per frame in %.1f ms; the same rays replayed alone: %.1f ms; ray efficiency "
                     "(replay / sampler) %.2f\n\n",
                     r.technique.c_str(), rays->second.median(), total->second.median(), replay->second.median(),
-                    efficiency);
-        efficiencyJson += std::string(efficiencyJson.empty() ? "" : ", ") + "{\"technique\": \"" + r.technique +
-                          "\", \"samplerMs\": " + std::to_string(total->second.median()) + ", \"replayMs\": " +
-                          std::to_string(replay->second.median()) + ", \"efficiency\": " + std::to_string(efficiency) + "}";
+                    ratio);
+        efficiency.push_back({{"technique", r.technique},
+                              {"samplerMs", total->second.median()},
+                              {"replayMs", replay->second.median()},
+                              {"efficiency", ratio}});
     }
-    return efficiencyJson;
+    return efficiency;
 }
 
 // SMCIR Table 2's columns for the VPL techniques (smcir, ir: those that time "<t> / shadow maps"),
@@ -314,13 +316,17 @@ int runBench(const std::vector<std::string>& args)
         labels.push_back(results[i].technique + (i == 1 && parser.has("against-set") ? " (against-set)" : ""));
     printVPLTable(results, labels);
     printRSMTable(results, labels);
-    std::string efficiencyJson = rayEfficiency(results);
-    if (!efficiencyJson.empty()) efficiencyJson = ", \"rayEfficiency\": [" + efficiencyJson + "]";
-    std::string json = "{\"scene\": \"" + sessions.front()->scene().source +
-                       "\", \"width\": " + std::to_string(size.width) + ", \"height\": " + std::to_string(size.height) +
-                       ", \"frames\": " + std::to_string(animation.frames) + ", \"results\": [";
-    for (std::size_t i = 0; i < results.size(); ++i) json += (i ? ", " : "") + jsonOf(results[i]);
-    json += "]" + efficiencyJson + "}\n";
+    const Json efficiency = rayEfficiency(results);
+    Json jsonResults = Json::array();
+    for (const BenchResult& r : results) jsonResults.push_back(jsonOf(r));
+    Json report = {{"scene", sessions.front()->scene().source},
+                   {"glRenderer", gl::rendererName()},
+                   {"width", size.width},
+                   {"height", size.height},
+                   {"frames", animation.frames},
+                   {"results", jsonResults}};
+    if (!efficiency.empty()) report["rayEfficiency"] = efficiency;
+    const std::string json = report.dump() + "\n";
     std::printf("%s", json.c_str());
     if (parser.has("json")) writeTextFile(parser.get("json"), json);
     return 0;

@@ -294,12 +294,14 @@ std::vector<std::string> seedKeys(Session& session)
 }
 
 // `technique` is a --techniques entry: name or name[key=value;...] (settings after --set's).
-SessionOptions sessionFor(const ConformOptions& o, const std::string& scene, const std::string& technique,
+SessionOptions sessionFor(const ConformOptions& o, const std::string& sceneSpec,
+                          const std::shared_ptr<const SceneDescription>& scene, const std::string& technique,
                           const Settings& extra, const std::string& camera = "")
 {
     const TechniqueEntry entry = parseTechniqueEntry(technique);
     SessionOptions options;
-    options.sceneSpec = scene;
+    options.sceneSpec = sceneSpec;
+    options.loaded = scene; // loaded once per scene, copied for each run
     options.technique = entry.technique;
     options.camera = camera;
     options.settings = o.settings;
@@ -333,13 +335,14 @@ bool hasLight(const Scene& scene)
     return false;
 }
 
-Cell runCell(const ConformOptions& o, const std::string& scene, const std::string& technique, int cellIndex)
+Cell runCell(const ConformOptions& o, const std::string& sceneSpec,
+            const std::shared_ptr<const SceneDescription>& scene, const std::string& technique, int cellIndex)
 {
     Cell cell;
-    cell.scene = scene;
+    cell.scene = sceneSpec;
     cell.technique = technique;
-    Session probe(sessionFor(o, scene, technique, {}));
-    require(hasLight(probe.scene()), scene + ": the scene has no light (no light source, no emissive material)");
+    Session probe(sessionFor(o, sceneSpec, scene, technique, {}));
+    require(hasLight(probe.scene()), sceneSpec + ": the scene has no light (no light source, no emissive material)");
     const std::vector<std::string> keys = seedKeys(probe);
     cell.seeds = keys.empty() ? 1 : o.seeds;
     // The sealed rooms: the first camera ("default") in the lit room, "closed" in the closed one.
@@ -349,11 +352,11 @@ Cell runCell(const ConformOptions& o, const std::string& scene, const std::strin
     ImageRGBA32F matched, truth;
     std::vector<double> matchedBias, truthBias, absE, p999, drift;
     for (int seed = 1; seed <= cell.seeds; ++seed) {
-        std::fprintf(stderr, "conform: %s / %s, seed %d/%d\n", scene.c_str(), technique.c_str(), seed, cell.seeds);
+        std::fprintf(stderr, "conform: %s / %s, seed %d/%d\n", sceneSpec.c_str(), technique.c_str(), seed, cell.seeds);
         Settings extra;
         for (const std::string& key : keys)
             extra.emplace_back(key, std::to_string(seed));
-        Session session(sessionFor(o, scene, technique, extra));
+        Session session(sessionFor(o, sceneSpec, scene, technique, extra));
         session.createRenderer(ProgressSink{[](const std::string&, int, int) {}});
         Renderer& renderer = session.renderer();
         if (seed == 1) {
@@ -402,7 +405,7 @@ Cell runCell(const ConformOptions& o, const std::string& scene, const std::strin
         }
         if (sealed) {
             // The same technique and seed from inside the closed room: nothing may arrive there.
-            Session inside(sessionFor(o, scene, technique, extra, "closed"));
+            Session inside(sessionFor(o, sceneSpec, scene, technique, extra, "closed"));
             inside.createRenderer(ProgressSink{[](const std::string&, int, int) {}});
             for (int frame = 0; frame < o.frames; ++frame)
                 inside.renderer().renderFrame(inside.camera(), o.size.width, o.size.height, 0.0f);
@@ -542,11 +545,16 @@ int runConform(const std::vector<std::string>& args)
         std::filesystem::create_directories(o.writeDir + "/images");
         std::unique_ptr<gl::Context> context = gl::createHeadlessContext();
         int index = 0;
-        for (const std::string& scene : o.scenes)
+        for (const std::string& scene : o.scenes) {
+            std::shared_ptr<const SceneDescription> loaded;
             for (const std::string& technique : o.techniques) {
-                if (index % o.shardCount == o.shardIndex - 1) cells.push_back(runCell(o, scene, technique, index));
+                if (index % o.shardCount == o.shardIndex - 1) {
+                    if (!loaded) loaded = std::make_shared<const SceneDescription>(loadSceneSpec(scene));
+                    cells.push_back(runCell(o, scene, loaded, technique, index));
+                }
                 ++index;
             }
+        }
     }
     writeReport(o.writeDir, cells, commandLine, o);
     staged.commit();

@@ -9,6 +9,8 @@
 #include <random>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/util/error.h"
 
 namespace vplgi {
@@ -319,68 +321,59 @@ std::string compareCsv(const CompareReport& report)
     return csv.str();
 }
 
-namespace {
-
-// [frame][tracked pixel] linear luminance as nested JSON arrays (for one's own temporal analysis).
-std::string trackedSeriesJson(const std::vector<std::vector<double>>& series)
-{
-    std::ostringstream json;
-    json.precision(9);
-    json << "[";
-    for (std::size_t f = 0; f < series.size(); ++f) {
-        json << (f ? ", [" : "[");
-        for (std::size_t j = 0; j < series[f].size(); ++j) json << (j ? ", " : "") << series[f][j];
-        json << "]";
-    }
-    json << "]";
-    return json.str();
-}
-
-} // namespace
-
 std::string compareJson(const CompareReport& report)
 {
-    std::ostringstream json;
-    json << "{\n  \"scene\": \"" << report.sceneSource << "\",\n  \"width\": " << report.width
-         << ", \"height\": " << report.height << ", \"frames\": " << report.frames
-         << ",\n  \"exposure\": " << report.exposure << ",\n  \"reference\": {\"mode\": \"" << report.referenceMode
-         << "\", \"spp\": " << report.referenceSpp << ", \"rendered\": " << report.referencesRendered
-         << ", \"settings\": \"" << report.referenceSettings << "\"},\n";
+    using Json = nlohmann::ordered_json;
+    // A whole-image metric, null when the run had no image metrics (no reference image).
+    auto metric = [&](double value) { return report.imageMetrics ? Json(value) : Json(nullptr); };
     const ReferenceNoiseCheck check = referenceNoiseCheck(report);
-    json << "  \"tracked\": {\"choice\": \"" << report.trackedChoice << "\", \"pixels\": [";
-    for (std::size_t j = 0; j < report.trackedPixels.size(); ++j)
-        json << (j ? ", " : "") << "[" << report.trackedPixels[j].x << ", " << report.trackedPixels[j].y << "]";
-    json << "],\n    \"referenceSpp\": " << report.trackedReferenceSpp
-         << ", \"referenceSeconds\": " << report.trackedReferenceSeconds
-         << ", \"referenceAbsE\": " << report.referenceSelf.meanAbsError
-         << ", \"referenceAbsEPrime\": " << report.referenceSelf.meanAbsDerivative
-         << ", \"noiseCheckApplies\": " << (check.applicable ? "true" : "false")
-         << ", \"noiseCheckHolds\": " << (check.holds ? "true" : "false")
-         << ",\n    \"referenceLuminance\": " << trackedSeriesJson(report.referenceTracked) << "},\n  \"techniques\": [\n";
-    for (std::size_t i = 0; i < report.techniques.size(); ++i) {
-        const CompareTechniqueResult& t = report.techniques[i];
+    Json pixels = Json::array();
+    for (const glm::ivec2& p : report.trackedPixels) pixels.push_back({p.x, p.y});
+    Json techniques = Json::array();
+    for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
-        json << "    {\"name\": \"" << t.name << "\", \"settings\": \"" << t.settings
-             << "\", \"meanAbsToneMapped\": " << imageMetric(report, mean.meanAbsToneMapped, "null")
-             << ", \"p999AbsToneMapped\": " << imageMetric(report, mean.p999AbsToneMapped, "null")
-             << ", \"rmse\": " << imageMetric(report, mean.rmse, "null")
-             << ", \"relativeMSE\": " << imageMetric(report, mean.relativeMSE, "null")
-             << ", \"meanLuminanceBias\": " << imageMetric(report, mean.meanRelativeLuminance, "null")
-             << ", \"temporalAbsE\": " << t.temporal.meanAbsError
-             << ", \"temporalAbsEPrime\": " << t.temporal.meanAbsDerivative
-             << ", \"medianFrameMs\": " << t.medianFrameMs
-             << ",\n     \"trackedLuminance\": " << trackedSeriesJson(t.tracked);
+        Json entry = {{"name", t.name},
+                      {"settings", t.settings},
+                      {"meanAbsToneMapped", metric(mean.meanAbsToneMapped)},
+                      {"p999AbsToneMapped", metric(mean.p999AbsToneMapped)},
+                      {"rmse", metric(mean.rmse)},
+                      {"relativeMSE", metric(mean.relativeMSE)},
+                      {"meanLuminanceBias", metric(mean.meanRelativeLuminance)},
+                      {"temporalAbsE", t.temporal.meanAbsError},
+                      {"temporalAbsEPrime", t.temporal.meanAbsDerivative},
+                      {"medianFrameMs", t.medianFrameMs},
+                      {"trackedLuminance", t.tracked}}; // [frame][tracked pixel] linear luminance
         if (!report.against.empty())
-            json << ", \"against\": {\"technique\": \"" << report.against
-                 << "\", \"meanAbsToneMapped\": " << t.againstErrors.meanAbsToneMapped
-                 << ", \"p999AbsToneMapped\": " << t.againstErrors.p999AbsToneMapped
-                 << ", \"absEPrimeRatio\": " << t.againstEPrime.ratio
-                 << ", \"absEPrimeRatioLow\": " << t.againstEPrime.low
-                 << ", \"absEPrimeRatioHigh\": " << t.againstEPrime.high << "}";
-        json << "}" << (i + 1 < report.techniques.size() ? "," : "") << "\n";
+            entry["against"] = {{"technique", report.against},
+                                {"meanAbsToneMapped", t.againstErrors.meanAbsToneMapped},
+                                {"p999AbsToneMapped", t.againstErrors.p999AbsToneMapped},
+                                {"absEPrimeRatio", t.againstEPrime.ratio},
+                                {"absEPrimeRatioLow", t.againstEPrime.low},
+                                {"absEPrimeRatioHigh", t.againstEPrime.high}};
+        techniques.push_back(std::move(entry));
     }
-    json << "  ]\n}\n";
-    return json.str();
+    const Json json = {{"scene", report.sceneSource},
+                       {"width", report.width},
+                       {"height", report.height},
+                       {"frames", report.frames},
+                       {"exposure", report.exposure},
+                       {"reference",
+                        {{"mode", report.referenceMode},
+                         {"spp", report.referenceSpp},
+                         {"rendered", report.referencesRendered},
+                         {"settings", report.referenceSettings}}},
+                       {"tracked",
+                        {{"choice", report.trackedChoice},
+                         {"pixels", pixels},
+                         {"referenceSpp", report.trackedReferenceSpp},
+                         {"referenceSeconds", report.trackedReferenceSeconds},
+                         {"referenceAbsE", report.referenceSelf.meanAbsError},
+                         {"referenceAbsEPrime", report.referenceSelf.meanAbsDerivative},
+                         {"noiseCheckApplies", check.applicable},
+                         {"noiseCheckHolds", check.holds},
+                         {"referenceLuminance", report.referenceTracked}}},
+                       {"techniques", techniques}};
+    return json.dump(2) + "\n";
 }
 
 std::string compareTrackedPlotName(std::size_t pixel)

@@ -82,7 +82,8 @@ const Camera& resolveCamera(Scene& scene, const std::string& name)
     return *camera;
 }
 
-Session::Session(const SessionOptions& options) : mDescription(loadSceneSpec(options.sceneSpec))
+Session::Session(const SessionOptions& options)
+    : mDescription(options.loaded ? *options.loaded : loadSceneSpec(options.sceneSpec))
 {
     mTechniqueName = !options.technique.empty() ? options.technique
                      : !mDescription.technique.empty() ? mDescription.technique

@@ -26,6 +26,9 @@ struct SessionOptions {
     // When false, settings no field of this session knows are left for the caller to check (compare
     // applies one --set list to several techniques); see Session::usedKeys().
     bool rejectUnknownSettings = true;
+    // When set, the session copies this scene instead of loading sceneSpec again (conform renders one
+    // scene many times; sceneSpec still names it).
+    std::shared_ptr<const SceneDescription> loaded;
 };
 
 class OptionParser;
