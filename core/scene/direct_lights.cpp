@@ -149,4 +149,90 @@ DirectLightSet buildDirectLights(const Scene& scene, const std::vector<Light>& l
     return set;
 }
 
+std::vector<shared::PointEmitter> groupCosineEmitters(const DirectLightSet& lights, int maxGroups)
+{
+    std::vector<const shared::PointEmitter*> samples;
+    for (const shared::PointEmitter& e : lights.points)
+        if (static_cast<int>(e.positionProfile.w + 0.5f) == shared::kProfileCosine) samples.push_back(&e);
+    if (samples.empty() || maxGroups <= 0) return {};
+    const std::size_t n = samples.size();
+    std::vector<double> weight(n);
+    glm::dvec3 lower(1e30), upper(-1e30);
+    for (std::size_t i = 0; i < n; ++i) {
+        weight[i] = std::max(1e-30, static_cast<double>(luminance(glm::vec3(samples[i]->intensity))));
+        lower = glm::min(lower, glm::dvec3(samples[i]->positionProfile));
+        upper = glm::max(upper, glm::dvec3(samples[i]->positionProfile));
+    }
+    // Distance between samples: positions over the emitters' extent, plus the normals' difference
+    // (half the weight of the whole extent for opposite normals), so that a lamp's faces part first.
+    const double extent2 = std::max(1e-12, glm::dot(upper - lower, upper - lower));
+    auto distance2 = [&](const glm::dvec3& p, const glm::dvec3& nrm, std::size_t i) {
+        const glm::dvec3 dp = glm::dvec3(samples[i]->positionProfile) - p;
+        const glm::dvec3 dn = glm::dvec3(samples[i]->axisCosOuter) - nrm;
+        return glm::dot(dp, dp) / extent2 + 0.125 * glm::dot(dn, dn);
+    };
+    // Seeds: the most powerful sample, then each time the sample with the largest power x squared
+    // distance to its nearest seed (ties to the lower index: deterministic).
+    std::vector<glm::dvec3> centre, normal;
+    const std::size_t k = std::min(n, static_cast<std::size_t>(maxGroups));
+    std::size_t first = static_cast<std::size_t>(std::max_element(weight.begin(), weight.end()) - weight.begin());
+    centre.push_back(glm::dvec3(samples[first]->positionProfile));
+    normal.push_back(glm::dvec3(samples[first]->axisCosOuter));
+    std::vector<double> nearest(n, 1e300);
+    while (centre.size() < k) {
+        std::size_t best = n;
+        double bestScore = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            nearest[i] = std::min(nearest[i], distance2(centre.back(), normal.back(), i));
+            const double score = weight[i] * nearest[i];
+            if (score > bestScore) bestScore = score, best = i;
+        }
+        if (best == n) break; // every sample coincides with a seed: fewer groups
+        centre.push_back(glm::dvec3(samples[best]->positionProfile));
+        normal.push_back(glm::dvec3(samples[best]->axisCosOuter));
+    }
+    std::vector<std::size_t> group(n, 0);
+    for (int step = 0; step < 8; ++step) {
+        for (std::size_t i = 0; i < n; ++i) {
+            double bestD = 1e300;
+            for (std::size_t g = 0; g < centre.size(); ++g) {
+                const double d = distance2(centre[g], normal[g], i);
+                if (d < bestD) bestD = d, group[i] = g;
+            }
+        }
+        std::vector<glm::dvec3> sumP(centre.size(), glm::dvec3(0.0)), sumN(centre.size(), glm::dvec3(0.0));
+        std::vector<double> sumW(centre.size(), 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            sumP[group[i]] += weight[i] * glm::dvec3(samples[i]->positionProfile);
+            sumN[group[i]] += weight[i] * glm::dvec3(samples[i]->axisCosOuter);
+            sumW[group[i]] += weight[i];
+        }
+        for (std::size_t g = 0; g < centre.size(); ++g)
+            if (sumW[g] > 0.0) {
+                centre[g] = sumP[g] / sumW[g];
+                normal[g] = sumN[g] / sumW[g];
+            }
+    }
+    std::vector<shared::PointEmitter> groups;
+    for (std::size_t g = 0; g < centre.size(); ++g) {
+        glm::dvec3 intensity(0.0), axis(0.0);
+        bool any = false;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (group[i] != g) continue;
+            intensity += glm::dvec3(samples[i]->intensity);
+            axis += weight[i] * glm::dvec3(samples[i]->axisCosOuter);
+            any = true;
+        }
+        if (!any) continue;
+        shared::PointEmitter e;
+        e.positionProfile = glm::vec4(glm::vec3(centre[g]), float(shared::kProfileCosine));
+        e.intensity = glm::vec4(glm::vec3(intensity), -1.0f);
+        const double length = glm::length(axis);
+        e.axisCosOuter = glm::vec4(length > 0.0 ? glm::vec3(axis / length) : glm::vec3(0.0f, -1.0f, 0.0f), -1.0f);
+        e.cosInner = glm::vec4(1.0f, 0.0f, 0.0f, 0.0f);
+        groups.push_back(e);
+    }
+    return groups;
+}
+
 } // namespace vplgi

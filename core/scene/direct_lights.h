@@ -26,4 +26,14 @@ DirectLightSet buildDirectLights(const Scene& scene, const DirectLightParams& pa
 // geometry and materials are read, its light list is not).
 DirectLightSet buildDirectLights(const Scene& scene, const std::vector<Light>& lights, const DirectLightParams& params);
 
+// The emissive samples of `lights` (kProfileCosine) merged into at most `maxGroups` cosine emitters,
+// the RSM techniques' sources for emissive triangles (gl/passes/rsm_pass.h; not in any paper).
+// Samples are clustered by position and normal (power-weighted farthest-point seeds, then a few
+// Lloyd steps; deterministic). A group sits at its samples' power-weighted centroid, emits around
+// their power-weighted mean normal with a cosine profile, and its peak intensity is the sum of
+// theirs, so its power pi * I is theirs exactly; its emission is exact for samples of one flat
+// emitter seen from afar and approximate where a group's normals differ (curved lamps). Empty when
+// there is no emissive sample or maxGroups is 0.
+std::vector<shared::PointEmitter> groupCosineEmitters(const DirectLightSet& lights, int maxGroups);
+
 } // namespace vplgi

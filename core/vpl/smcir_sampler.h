@@ -96,13 +96,15 @@
 //  invalid VPLs from the weakest up, and, while fewer than M_min, the weakest valid VPLs. Freed
 //  slots get the strongest remaining candidates; a slot left without one becomes empty.
 //
-//  Known biases of the method (measured in the furnace, tests/cpu/test_smcir_sampler.cpp): the
-//  k = 1 ranking of candidates makes the set blue noise, and kNN on a repulsive set over-estimates
-//  1/p: mean 1/p is about +9 % of the true value at I = 2048 (k = 8) and +14 % at I = 512 (k = 4)
-//  after warm-up (right after initialize(), before any selection, it is exact to 1-5 %). Ranking
-//  by a radiance estimate that is frozen per VPL also keeps the VPLs whose estimate came out high
-//  (+5 % after 20 frames with 16 samples when the estimate is noisy). The paper accepts this: the
-//  method is biased but consistent (3.3).
+//  Known biases of the method (measured in the furnace: tests/cpu/test_smcir_sampler.cpp, test
+//  case "smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (5) = rho L_all",
+//  which prints them: ./build/tests/vplgi_tests_cpu "smcir furnace*"): the k = 1 ranking of
+//  candidates makes the set blue noise, and kNN on a repulsive set over-estimates 1/p after
+//  warm-up, less as k grows (right after initialize(), before any selection, mean 1/p is the
+//  sphere's area up to noise; the test allows 3 %). Ranking by a radiance estimate that is frozen
+//  per VPL also keeps the VPLs whose estimate came out high when the estimate is noisy (test case
+//  "smcir: VPLs render with radiance estimates independent of the ones they were selected on").
+//  The paper accepts this: the method is biased but consistent (3.3).
 //
 //  Stable slots: a VPL keeps its slot for its life. VPLSet::changed lists the slots whose VPL was
 //  replaced or removed by the last step (their shadow maps must be redrawn); it is sorted and has
@@ -198,8 +200,9 @@ struct SMCIRParams {
                                      // candidate estimate that selected it (its own lifetime seed), instead
                                      // of keeping the value it was selected on. Selecting on a noisy value and
                                      // rendering with the same value keeps the VPLs whose estimate came out
-                                     // high: on Cornell (I = 2048, 100 warm-up frames) +30% mean bias kept,
-                                     // against the clamped path tracer (docs/smcir.md). The paper's text
+                                     // high (test case "smcir: VPLs render with radiance estimates
+                                     // independent of the ones they were selected on",
+                                     // tests/cpu/test_smcir_sampler.cpp, prints both). The paper's text
                                      // allows both readings ("the intensities are re-estimated for the
                                      // remaining VPLs", a VPL-specific seed for the VPL's lifetime)
     bool reestimateEveryFrame = false; // every frame is a new radiance-cache key: the moving-light cost

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <cstdio>
+
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "core/util/power_of_two.h"
@@ -17,6 +19,9 @@ void RSMParams::visitParams(ParamVisitor& v)
 {
     v.field("rsm.size", size, 2, 4096,
             "RSM resolution per spot light, point-light cube face and directional light [texels], a power of two");
+    v.field("rsm.areaSources", areaSources, 0, 64,
+            "emissive triangles become at most this many cosine RSM sources, rendered like point lights over "
+            "their hemisphere (not in the papers); 0: emissive light gives no indirect light (a warning)");
 }
 
 namespace {
@@ -80,44 +85,71 @@ void RSMPass::reloadShaders(const gl::ShaderLoader& shaders)
     mDownsample.reloadShaders(shaders);
 }
 
-std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet& lights, int size)
+std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet& lights, int areaSources, int size)
 {
     const glm::vec3 lower = bounds.empty() ? glm::vec3(0.0f) : bounds.lower;
     const glm::vec3 upper = bounds.empty() ? glm::vec3(0.0f) : bounds.upper;
     const float diagonal = std::max(1e-3f, glm::length(upper - lower));
     std::vector<RSMView> views;
-    for (std::size_t i = 0; i < lights.points.size(); ++i) {
-        const shared::PointEmitter& e = lights.points[i];
-        const int profile = static_cast<int>(e.positionProfile.w + 0.5f);
-        if (profile != shared::kProfileSpot && profile != shared::kProfileIsotropic) continue;
-        const glm::vec3 position(e.positionProfile);
-        // Far: past the farthest bounds corner; near: a fixed fraction of it (DEPTH32F has the
-        // precision for 1e-4).
+    // Far: past the farthest bounds corner; near: a fixed fraction of it (DEPTH32F has the
+    // precision for 1e-4).
+    auto zFarFrom = [&](const glm::vec3& position) {
         float farthest = 0.0f;
         for (int c = 0; c < 8; ++c) {
             const glm::vec3 corner((c & 1) ? upper.x : lower.x, (c & 2) ? upper.y : lower.y,
                                    (c & 4) ? upper.z : lower.z);
             farthest = std::max(farthest, glm::length(corner - position));
         }
-        const float zFar = 1.01f * std::max(farthest, diagonal * 1e-3f);
+        return 1.01f * std::max(farthest, diagonal * 1e-3f);
+    };
+    // The six cube faces around `source`; with `hemisphere`, only those reaching in front of its
+    // axis (a face whose four corner directions all lie behind would hold no flux).
+    auto addCubeFaces = [&](RSMView view, bool hemisphere) {
+        const glm::vec3 position(view.source.positionProfile);
+        const float zFar = zFarFrom(position);
+        for (int face = 0; face < shared::kLightViewCubeFaceCount; ++face) {
+            if (hemisphere) {
+                // The face's corner directions are axis +/- u +/- v (u, v the other two unit axes):
+                // n . corner peaks at n . axis + |n . u| + |n . v|.
+                const glm::vec3 axis = shared::lightViewCubeFaceDirection(face);
+                const int k = axis.x != 0.0f ? 0 : axis.y != 0.0f ? 1 : 2;
+                const glm::vec3 n(view.source.axisCosOuter);
+                if (n[k] * axis[k] + std::abs(n[(k + 1) % 3]) + std::abs(n[(k + 2) % 3]) <= 0.0f) continue;
+            }
+            view.face = face;
+            view.viewFromWorld = shared::lightViewCubeFaceViewFromWorld(position, face);
+            view.clipFromView = shared::lightViewCubeFaceClipFromView(1e-4f * zFar, zFar);
+            views.push_back(view);
+        }
+    };
+    for (std::size_t i = 0; i < lights.points.size(); ++i) {
+        const shared::PointEmitter& e = lights.points[i];
+        const int profile = static_cast<int>(e.positionProfile.w + 0.5f);
+        if (profile != shared::kProfileSpot && profile != shared::kProfileIsotropic) continue;
         RSMView view;
         view.emitter = static_cast<int>(i);
+        view.source = e;
         if (profile == shared::kProfileIsotropic) {
             view.kind = shared::kRSMLightPoint;
-            for (int face = 0; face < shared::kLightViewCubeFaceCount; ++face) {
-                view.face = face;
-                view.viewFromWorld = shared::lightViewCubeFaceViewFromWorld(position, face);
-                view.clipFromView = shared::lightViewCubeFaceClipFromView(1e-4f * zFar, zFar);
-                views.push_back(view);
-            }
+            addCubeFaces(view, false);
             continue;
         }
+        const glm::vec3 position(e.positionProfile);
+        const float zFar = zFarFrom(position);
         const glm::vec3 axis = glm::normalize(glm::vec3(e.axisCosOuter));
         const float halfAngle = std::min(std::acos(std::clamp(e.axisCosOuter.w, -1.0f, 1.0f)), kRSMMaxSpotHalfAngle);
         view.kind = shared::kRSMLightSpot;
         view.viewFromWorld = shared::lightViewSpotViewFromWorld(position, axis);
         view.clipFromView = shared::lightViewSpotClipFromView(halfAngle, 1e-4f * zFar, zFar);
         views.push_back(view);
+    }
+    const std::vector<shared::PointEmitter> groups = groupCosineEmitters(lights, areaSources);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        RSMView view;
+        view.kind = shared::kRSMLightArea;
+        view.emitter = static_cast<int>(g);
+        view.source = groups[g];
+        addCubeFaces(view, true);
     }
     for (std::size_t i = 0; i < lights.directionals.size(); ++i) {
         // lightViewDirectionalFit's sphere, kept in its two factors for the texel area.
@@ -142,7 +174,16 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
                      gl::PassTimer* timer)
 {
     require(isPowerOfTwo(params.size), "rsm.size must be a power of two, not " + std::to_string(params.size));
-    mViews = makeViews(scene.scene().worldBounds(), lights, params.size);
+    if (params.areaSources == 0 && !mWarnedArea) {
+        for (const shared::PointEmitter& e : lights.points)
+            if (static_cast<int>(e.positionProfile.w + 0.5f) == shared::kProfileCosine) {
+                std::fprintf(stderr, "vplgi: warning: rsm.areaSources = 0: the emissive triangles give no indirect "
+                                     "light in the RSM techniques\n");
+                mWarnedArea = true;
+                break;
+            }
+    }
+    mViews = makeViews(scene.scene().worldBounds(), lights, params.areaSources, params.size);
     if (mViews.empty()) return;
     // The techniques lay the layers side by side in one texture (the importance maps), so size x
     // layers must fit GL_MAX_TEXTURE_SIZE: the largest power of two that does.
@@ -151,12 +192,12 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     mSize = gl::clampToLimit(params.size, fit, "rsm.size",
                              "GL_MAX_TEXTURE_SIZE / RSM layers (" + std::to_string(layerCount()) +
                                  " layers side by side in the importance maps)");
-    if (mSize != params.size) mViews = makeViews(scene.scene().worldBounds(), lights, mSize);
+    if (mSize != params.size) mViews = makeViews(scene.scene().worldBounds(), lights, params.areaSources, mSize);
     std::vector<shared::RSMLayerLight> layerLights;
     for (const RSMView& view : mViews) {
         const glm::vec3 where = view.kind == shared::kRSMLightDirectional
                                     ? glm::vec3(lights.directionals[static_cast<std::size_t>(view.emitter)].direction)
-                                    : glm::vec3(lights.points[static_cast<std::size_t>(view.emitter)].positionProfile);
+                                    : glm::vec3(view.source.positionProfile);
         layerLights.push_back({glm::vec4(where, static_cast<float>(view.kind))});
     }
     gl::uploadVector(mLayerLights, "rsm layer lights", layerLights);
@@ -174,18 +215,23 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
         mProgram.set("uClipFromWorld", view.clipFromWorld);
         mProgram.set("uLightKind", view.kind);
         mProgram.set("uTexelFactor", view.texelFactor);
-        if (view.kind == shared::kRSMLightSpot || view.kind == shared::kRSMLightPoint) {
-            const shared::PointEmitter& e = lights.points[static_cast<std::size_t>(view.emitter)];
-            const glm::vec3 axis = view.kind == shared::kRSMLightPoint ? shared::lightViewCubeFaceDirection(view.face)
-                                                                       : glm::normalize(glm::vec3(e.axisCosOuter));
+        if (view.kind != shared::kRSMLightDirectional) {
+            const shared::PointEmitter& e = view.source;
+            const glm::vec3 axis = view.kind == shared::kRSMLightSpot ? glm::normalize(glm::vec3(e.axisCosOuter))
+                                                                      : shared::lightViewCubeFaceDirection(view.face);
             mProgram.set("uLightPosition", glm::vec4(glm::vec3(e.positionProfile), 1.0f));
             mProgram.set("uLightDirection", glm::vec4(axis, 0.0f));
+            const glm::vec3 emitterAxis(e.axisCosOuter); // zero for a point light (isotropic)
+            mProgram.set("uEmitterAxis", glm::vec4(glm::length(emitterAxis) > 0.0f ? glm::normalize(emitterAxis)
+                                                                                  : glm::vec3(0.0f),
+                                                   0.0f));
             mProgram.set("uLightPower", glm::vec4(glm::vec3(e.intensity), 0.0f));
             mProgram.set("uLightCone", glm::vec4(e.axisCosOuter.w, e.cosInner.x, 0.0f, 0.0f));
         } else {
             const shared::DirectionalEmitter& d = lights.directionals[static_cast<std::size_t>(view.emitter)];
             mProgram.set("uLightPosition", glm::vec4(0.0f));
             mProgram.set("uLightDirection", glm::vec4(glm::normalize(glm::vec3(d.direction)), 0.0f));
+            mProgram.set("uEmitterAxis", glm::vec4(0.0f));
             mProgram.set("uLightPower", glm::vec4(glm::vec3(d.irradiance), 0.0f));
             mProgram.set("uLightCone", glm::vec4(0.0f));
         }

@@ -55,8 +55,18 @@
 //  has (texel solid angle cos^3, the mip reduction per layer, light_view.h's cube faces, the same
 //  as the shadow cubes'). The price: six layers per light instead of two, and the mips stop at
 //  the face seams (a consumer filtering across a seam must look up the neighbouring face).
-//  Emissive samples (kProfileCosine) get none: there are lights.emitterSamples of them, each a
-//  hemisphere light; an RSM for an area light would be a technique's own decision.
+//  Emissive triangles (not in any paper: VSGL, LightSkin and the RSM papers light by point, spot
+//  and directional lights): their lights.emitterSamples cosine samples are merged into at most
+//  rsm.areaSources cosine emitters (groupCosineEmitters, core/scene/direct_lights.h), each rendered
+//  like a point light over the cube faces its hemisphere reaches (a face wholly behind the emitter
+//  is skipped), with I(w) = I max(n . w, 0): the flux through a texel is I (n . w) x its solid
+//  angle (MATH.md 1.5 with the cosine profile), so a group's faces hold its power pi I times the
+//  fraction that reaches a surface. rsm.areaSources = 0 leaves them out, with a warning. Default 1
+//  (ours): on Cornell (one ceiling panel) one source against four, 4 seeds (`vplgi conform --scenes
+//  cornell --techniques 'vpl-brsm,vpl-brsm[rsm.areaSources=4],vsgl,vsgl[rsm.areaSources=4]' --seeds 4
+//  --width 32 --height 18`): vpl-brsm -0.9% [-2.0, +0.3] and -1.5% [-2.3, -0.7] against the one-bounce
+//  path tracer, vsgl -10.2% [-11.5, -8.9] and -21.0% [-22.0, -20.0] (four times the cube-face seams,
+//  which its footprints do not cross), and four sources give lightskin-full four times the VALs.
 //  Precision: positions are absolute world coordinates; |x|^2 - |E[x]|^2 loses digits far from the
 //  origin (MATH.md 5.3 float32 caution). A consumer that needs the variance far away should store
 //  positions relative to the light instead.
@@ -85,7 +95,8 @@ namespace vplgi {
 class ParamVisitor;
 
 struct RSMParams {
-    int size = 256; // RSM resolution per light [texels], a power of two
+    int size = 256;       // RSM resolution per light [texels], a power of two
+    int areaSources = 1;  // emissive triangles as at most this many cosine RSM sources; 0: none
     void visitParams(ParamVisitor& visitor);
 };
 
@@ -94,9 +105,10 @@ constexpr float kRSMMaxSpotHalfAngle = 1.4835299f; // 85 degrees
 
 // What layer i of the RSM was rendered for.
 struct RSMView {
-    int kind = 0;    // shared::kRSMLightSpot / kRSMLightPoint / kRSMLightDirectional
-    int emitter = 0; // index in DirectLightSet::points / ::directionals
-    int face = 0;    // point: cube face (0..5 = +X, -X, +Y, -Y, +Z, -Z); 0 otherwise
+    int kind = 0;    // shared::kRSMLightSpot / kRSMLightPoint / kRSMLightArea / kRSMLightDirectional
+    int emitter = 0; // index in DirectLightSet::points / ::directionals; area: the group's index
+    int face = 0;    // point, area: cube face (0..5 = +X, -X, +Y, -Y, +Z, -Z); 0 otherwise
+    shared::PointEmitter source{}; // spot, point, area: the emitter the layer sees (area: its group)
     glm::mat4 viewFromWorld{1.0f};
     glm::mat4 clipFromView{1.0f};
     glm::mat4 clipFromWorld{1.0f};
@@ -120,7 +132,7 @@ class RSMPass {
 public:
     explicit RSMPass(const gl::ShaderLoader& shaders);
     void reloadShaders(const gl::ShaderLoader& shaders);
-    // Renders every spot, point and directional light's RSM and its mips. Throws Error when params.size is
+    // Renders every spot, point, area (emissive) and directional light's RSM and its mips. Throws Error when params.size is
     // not a power of two. With no such light, nothing is drawn and layerCount() is 0.
     void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params,
                 gl::PassTimer* timer = nullptr);
@@ -139,7 +151,8 @@ public:
     int size() const { return mSize; }
 
     // The views render() would use (CPU only; shared with the tests' CPU rasterisation).
-    static std::vector<RSMView> makeViews(const AABB& bounds, const DirectLightSet& lights, int size);
+    static std::vector<RSMView> makeViews(const AABB& bounds, const DirectLightSet& lights, int areaSources,
+                                          int size);
 
 private:
     gl::Program mProgram;
@@ -149,6 +162,7 @@ private:
     gl::Buffer mLayerLights;
     int mLevels = 0;
     int mSize = 0;
+    bool mWarnedArea = false; // the rsm.areaSources = 0 warning, once
 };
 
 } // namespace vplgi

@@ -20,10 +20,11 @@ uniform vec4 uBaseColor;
 uniform vec4 uMaterial;   // x metallic, y roughness, z specular, w normal scale
 uniform ivec4 uTextures;  // x normal map present (with tangents), y double-sided
 
-uniform int uLightKind;          // kRSMLightSpot / kRSMLightPoint / kRSMLightDirectional
-uniform vec4 uLightPosition;     // spot, point: xyz position [m]
-uniform vec4 uLightDirection;    // spot: axis; point: the cube face's axis; directional: direction light travels (unit)
-uniform vec4 uLightPower;        // spot: peak intensity, point: intensity [W/sr]; directional: irradiance [W/m^2] (rgb)
+uniform int uLightKind;          // kRSMLightSpot / kRSMLightPoint / kRSMLightArea / kRSMLightDirectional
+uniform vec4 uLightPosition;     // spot, point, area: xyz position [m]
+uniform vec4 uLightDirection;    // spot: axis; point, area: the cube face's axis; directional: direction light travels (unit)
+uniform vec4 uEmitterAxis;       // spot: axis; area: the emitters' mean normal (cosine profile)
+uniform vec4 uLightPower;        // spot, area: peak intensity, point: intensity [W/sr]; directional: irradiance [W/m^2] (rgb)
 uniform vec4 uLightCone;         // spot: x cos(outer), y cos(inner)
 // 4 / (P[0][0] P[1][1] W H) of the light's projection P and the RSM size W x H: the texel's solid
 // angle on the axis, in [sr] (spot, MATH.md 1.5: w_n h_n / (W H z_n^2)), or its area [m^2]
@@ -60,14 +61,16 @@ void main()
     // Flux through the texel (MATH.md 1.5), towards the light `toLight`.
     vec3 incident;
     vec3 toLight;
-    if (uLightKind == kRSMLightSpot || uLightKind == kRSMLightPoint) {
+    if (uLightKind != kRSMLightDirectional) {
         // A point light's cube face is a 90-degree perspective view down the face axis: the same
-        // texel solid angle as a spot's frustum, with an isotropic profile.
+        // texel solid angle as a spot's frustum, with an isotropic profile (area: cosine).
         vec3 fromLight = normalize(vWorldPosition - uLightPosition.xyz);
+        int profile = uLightKind == kRSMLightSpot ? kProfileSpot : uLightKind == kRSMLightArea ? kProfileCosine
+                                                                                                : kProfileIsotropic;
         PointEmitter e;
-        e.positionProfile = vec4(uLightPosition.xyz, float(uLightKind == kRSMLightSpot ? kProfileSpot : kProfileIsotropic));
+        e.positionProfile = vec4(uLightPosition.xyz, float(profile));
         e.intensity = uLightPower;
-        e.axisCosOuter = vec4(uLightDirection.xyz, uLightCone.x);
+        e.axisCosOuter = vec4(uEmitterAxis.xyz, uLightCone.x);
         e.cosInner = vec4(uLightCone.y, 0.0, 0.0, 0.0);
         float cosAlpha = dot(uLightDirection.xyz, fromLight);
         // Solid angle of the texel: on-axis value times cos^3 of the ray's angle to the axis.

@@ -11,16 +11,17 @@
 //      and flux Phi_h / (N P_h), P filtered over the same footprint as Phi.
 //    Why (docs/vsgl.md): the estimator's expectation is sum_j P_j Phi_h(j) / q(j). With q = P_j it
 //    is sum_j Phi_h(j), which over-counts bright texels next to dim ones (a dim texel's large
-//    footprint reaches into its bright neighbours): +15% in the normal-mapped glossy room. With
-//    leaf cells (a partition: the criterion is monotone up the mip chain, so every texel of a
-//    leaf finds that leaf) and q = P_cell it would be sum_cells P_cell Phi_cell / P_cell, exact, with
-//    flux and probability read from the leaf cell itself. Here both are read bilinearly at the
-//    leaf's level (a bilinear flux over a bilinear probability), which moves smoothly with the draw
-//    but is not unbiased: over 8 seeds in the glossy room vsgl is 0.944x vpl-brsm from the same draws
-//    (+1.2% [+0.3, +2.1] against the one-bounce path tracer where vpl-brsm is +7.2% [+5.3, +9.1]:
-//    `vplgi conform --scenes glossy --techniques vsgl,vpl-brsm,lightskin --seeds 8 --width 64
-//    --height 36 --spp 1024`, docs/conformance.md). Reading the leaf cell exactly is issue "VSGL
-//    made exact".
+//    footprint reaches into its bright neighbours; measured over 8 seeds in docs/conformance.md,
+//    "VSGL's footprints over 8 seeds"). With leaf cells (a partition: the criterion is monotone up
+//    the mip chain, so every texel of a leaf finds that leaf) and q = P_cell it would be
+//    sum_cells P_cell Phi_cell / P_cell, exact, with flux and probability read from the leaf cell
+//    itself. Here both are read bilinearly at the leaf's level (a bilinear flux over a bilinear
+//    probability), which moves smoothly with the draw but is not unbiased: over 8 seeds in the
+//    glossy room vsgl is +1.2% [+0.3, +2.1] against the one-bounce path tracer where vpl-brsm from
+//    the same draws is +7.2% [+5.3, +9.1]
+//    (`vplgi conform --scenes glossy --techniques vsgl,vpl-brsm,lightskin --seeds 8 --width 64
+//    --height 36 --spp 1024`, docs/conformance.md): 0.944x, the ratio of those two means
+//    (1.012 / 1.072). Reading the leaf cell exactly is issue "VSGL made exact".
 //  uMode 1, the same draws as VPLs (baseline vpl-brsm, eq. 1): level 0, no filtering, r = 0.
 //  uMode 2, a grid (the view lights): every texel of level uLevel is a light, flux 4^L Phi_L.
 #include "shared/bindings.h"
@@ -119,8 +120,8 @@ void main()
     light.positionRadius2 = vec4(position.xyz, uMode == 1 ? 0.0 : 2.0 * variance);
     // The footprint's emission towards w is sum_k Phi_k cos(n_k, w) = Phi (n_mean . w): the mean
     // normal keeps its length (|n_mean| < 1 where normals spread: normal maps, corners), which the
-    // unit normal of eq. (3)'s cosine drops, so the flux takes it (not in the paper: without it, the
-    // normal-mapped glossy room came out brighter than the VPLs from the same draws; docs/vsgl.md).
+    // unit normal of eq. (3)'s cosine drops, so the flux takes it (not in the paper; an earlier
+    // version without it was biased high in the normal-mapped glossy room; docs/vsgl.md).
     float normalLength = min(length(normal.xyz), 1.0);
     light.normalValid = vec4(normal.xyz / length(normal.xyz), 1.0);
     light.flux = vec4(flux.rgb * fluxScale * normalLength, float(texel.z)); // w: the layer (RSMLayerLight)

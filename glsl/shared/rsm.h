@@ -19,6 +19,7 @@ VPLGI_CONST int kRSMAttachmentCount = 6;
 VPLGI_CONST int kRSMLightSpot = 0;
 VPLGI_CONST int kRSMLightDirectional = 1;
 VPLGI_CONST int kRSMLightPoint = 2; // one of six cube faces (gl/passes/rsm_pass.h says why a cube)
+VPLGI_CONST int kRSMLightArea = 3;  // a cube face of a group of emissive samples (cosine emission)
 
 // Work-group edge of rsm_downsample.comp.
 VPLGI_CONST int kRSMDownsampleGroupSize = 8;
@@ -27,7 +28,7 @@ VPLGI_CONST int kRSMDownsampleGroupSize = 8;
 // a texel reflects comes from. A texel's lobe axis cannot tell (a rough surface's lobe has zero
 // sharpness, and Toksig's encoding stores it as the zero vector).
 struct RSMLayerLight {
-    vec4 positionKind; // spot, point: xyz position [m]; directional: xyz the direction light travels;
+    vec4 positionKind; // spot, point, area: xyz position [m]; directional: xyz the direction light travels;
                        // w the kRSMLight* kind
 };
 

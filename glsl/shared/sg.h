@@ -208,7 +208,8 @@ VPLGI_FUNC float ggxNDFSharpness(float alpha)
 }
 
 // The cosine below which the warp's 1/cos factors are held (grazing incidence): keeps the
-// sharpness finite; the fit is poor there anyway (MATH 4.7: the SG shape error is 76% at 80 deg).
+// sharpness finite; the fit is poor there anyway (the SG warp's L2 shape error is 76% at 80 deg,
+// eta_d = 200: ../shared/MATH.md section 4.7, "Accuracy"; docs/vsgl.md's table stops at 60 deg).
 VPLGI_CONST float kWarpMinCosine = 1.0e-3f;
 
 // The specular lobe leaving a surface lit from `incoming` (or seen from it), as an SG:

@@ -108,3 +108,46 @@ TEST_CASE("emitter sample count must be positive", "[lights]")
     params.emitterSamples = 0;
     CHECK_THROWS_AS(buildDirectLights(scene, params), Error);
 }
+
+TEST_CASE("emissive samples merge into at most rsm.areaSources cosine sources that keep their power", "[lights]")
+{
+    Scene scene = makeBuiltinScene("cornell");
+    DirectLightParams params;
+    params.emitterSamples = 64;
+    const DirectLightSet set = buildDirectLights(scene, params);
+    glm::dvec3 total(0.0);
+    for (const shared::PointEmitter& e : set.points) total += glm::dvec3(e.intensity);
+    for (int groups : {1, 2, 4, 64, 100}) {
+        const std::vector<shared::PointEmitter> merged = groupCosineEmitters(set, groups);
+        REQUIRE(!merged.empty());
+        CHECK(static_cast<int>(merged.size()) <= std::min(groups, 64));
+        glm::dvec3 sum(0.0);
+        for (const shared::PointEmitter& g : merged) {
+            sum += glm::dvec3(g.intensity);
+            CHECK(static_cast<int>(g.positionProfile.w + 0.5f) == shared::kProfileCosine);
+            // The Cornell light is one flat quad facing down: every group's normal is its normal.
+            CHECK(g.axisCosOuter.y == Approx(-1.0f).margin(1e-6));
+        }
+        // Power pi I is kept (float sums of 64 terms).
+        CHECK(sum.x == Approx(total.x).epsilon(1e-5));
+        CHECK(sum.z == Approx(total.z).epsilon(1e-5));
+        // Deterministic.
+        const std::vector<shared::PointEmitter> again = groupCosineEmitters(set, groups);
+        REQUIRE(again.size() == merged.size());
+        for (std::size_t i = 0; i < merged.size(); ++i)
+            CHECK(glm::vec3(again[i].positionProfile) == glm::vec3(merged[i].positionProfile));
+    }
+    // One group sits at the power-weighted centroid of the samples.
+    const std::vector<shared::PointEmitter> one = groupCosineEmitters(set, 1);
+    glm::dvec3 centroid(0.0);
+    double weight = 0.0;
+    for (const shared::PointEmitter& e : set.points) {
+        const double w = 0.2126 * e.intensity.r + 0.7152 * e.intensity.g + 0.0722 * e.intensity.b;
+        centroid += w * glm::dvec3(e.positionProfile);
+        weight += w;
+    }
+    CHECK(glm::distance(glm::vec3(one[0].positionProfile), glm::vec3(centroid / weight)) < 1e-5f);
+    CHECK(groupCosineEmitters(set, 0).empty());
+    Scene dark = makeBuiltinScene("furnace"); // a point light only
+    CHECK(groupCosineEmitters(buildDirectLights(dark, params), 4).empty());
+}
