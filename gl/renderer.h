@@ -76,6 +76,8 @@ public:
     const DirectLightSet& lights() const { return mLights; }
     Technique& technique() { return *mTechnique; }
     const GpuScene& gpuScene() const { return mGpuScene; }
+    // The last frame's G-buffer (gl/passes/gbuffer_pass.h).
+    const GBuffer& gbuffer() const { return mGBuffer.gbuffer(); }
     const RendererParams& params() const { return mParams; }
     // The one live parameter set: the renderer's fields and its technique's (Session, CLI, scene
     // file, reports and the viewer all read and write these through visitParams).

@@ -43,6 +43,9 @@ glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoin
         const float distance2 = glm::dot(toVPL, toVPL);
         if (!(distance2 > 0.0f)) continue;
         const glm::vec3 wi = toVPL / std::sqrt(distance2);
+        // Below the shading point's triangle: nothing, as the path tracer and the GPU shading
+        // (glsl/passes/vpl_shading.frag, the G-buffer's geometric normal) drop it.
+        if (glm::dot(point.geometricNormal, wi) <= 0.0f) continue;
         const float cosX = glm::dot(point.normal, wi);
         const float cosY = -glm::dot(vpl.normal, wi);
         if (cosX <= 0.0f || cosY <= 0.0f) continue;

@@ -20,15 +20,17 @@ void GBuffer::bindForReading() const
     glBindTextureUnit(kUnitGBufferNormal, normal().id());
     glBindTextureUnit(kUnitGBufferBaseColor, baseColor().id());
     glBindTextureUnit(kUnitGBufferEmission, emission().id());
-    for (int unit : {kUnitGBufferPosition, kUnitGBufferNormal, kUnitGBufferBaseColor, kUnitGBufferEmission})
+    glBindTextureUnit(kUnitGBufferSurfaceNormals, surfaceNormals().id());
+    for (int unit : {kUnitGBufferPosition, kUnitGBufferNormal, kUnitGBufferBaseColor, kUnitGBufferEmission,
+                     kUnitGBufferSurfaceNormals})
         glBindSampler(static_cast<GLuint>(unit), 0);
 }
 
 GBufferPass::GBufferPass(const gl::ShaderLoader& shaders) : mProgram(loadProgram(shaders))
 {
     gl::RenderTargetDesc desc;
-    desc.colorFormats = {GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F};
-    desc.colorNames = {"position", "normal", "base colour", "emission"};
+    desc.colorFormats = {GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F};
+    desc.colorNames = {"position", "normal", "base colour", "emission", "surface normals"};
     desc.depthFormat = GL_DEPTH_COMPONENT32F;
     mGBuffer.target = gl::RenderTarget("gbuffer", desc);
 }

@@ -39,20 +39,20 @@ float texelFactor(const glm::mat4& clipFromView, int size)
 
 } // namespace
 
-gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth)
+gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth, bool mips)
 {
     gl::RenderTargetDesc desc;
     desc.colorFormats.assign(shared::kRSMAttachmentCount, GL_RGBA32F);
     desc.colorNames = {"position", "normal", "flux", "diffuse", "specular", "lobe"};
     desc.depthFormat = withDepth ? GL_DEPTH_COMPONENT32F : GL_NONE;
     desc.textureTarget = GL_TEXTURE_2D_ARRAY;
-    desc.levels = 0;
+    desc.levels = mips ? 0 : 1;
     return gl::RenderTarget(name, desc);
 }
 
 void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& target, gl::PassTimer* timer)
 {
-    const int levels = mipLevelCount(target.width());
+    const int levels = target.color(0).desc().levels; // 1 (RSMMips::None): nothing to do
     const int layers = target.color(0).desc().layers;
     for (int level = 1; level < levels; ++level) {
         const int size = std::max(1, target.width() >> level);
@@ -73,9 +73,9 @@ void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& targ
     }
 }
 
-RSMPass::RSMPass(const gl::ShaderLoader& shaders)
+RSMPass::RSMPass(const gl::ShaderLoader& shaders, RSMMips mips)
     : mProgram(loadProgram(shaders)), mDownsample(shaders, "rsm downsample", "passes/rsm_downsample.comp"),
-      mTarget(makeRSMLayoutTarget("rsm", true))
+      mMips(mips), mTarget(makeRSMLayoutTarget("rsm", true, mips == RSMMips::All))
 {
 }
 
@@ -203,7 +203,7 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     gl::uploadVector(mLayerLights, "rsm layer lights", layerLights);
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "rsm");
     mTarget.resize(mSize, mSize, layerCount());
-    mLevels = mipLevelCount(mSize);
+    mLevels = mMips == RSMMips::All ? mipLevelCount(mSize) : 1;
     mTarget.bindForDrawing();
     mTarget.clear(glm::vec4(0.0f), 1.0f);
     glEnable(GL_DEPTH_TEST);
@@ -240,7 +240,7 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    downsample(timer);
+    if (mMips == RSMMips::All) downsample(timer);
     glPopDebugGroup();
 }
 

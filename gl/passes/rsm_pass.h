@@ -117,7 +117,7 @@ struct RSMView {
 
 // A target with the RSM layout above (2D array, full mip chain, depth when `withDepth`): the RSM
 // pass's and VSGL's G-buffer-as-light (gl/techniques/vsgl_technique.h), which share the mips.
-gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth);
+gl::RenderTarget makeRSMLayoutTarget(const std::string& name, bool withDepth, bool mips = true);
 // Recomputes levels 1.. of every layer of an RSM-layout target from level 0 with `kernel`
 // (passes/rsm_downsample.comp), then issues the barriers for sampling, readback and image loads.
 void downsampleRSMLayout(const ComputePass& kernel, const gl::RenderTarget& target, gl::PassTimer* timer = nullptr);
@@ -128,15 +128,23 @@ class RSMPass;
 // picks one); black while `rsm` is null or has no layer. Shared by the RSM techniques.
 DebugView rsmFluxDebugView(const std::string& name, const RSMPass* rsm);
 
+// Whether a technique reads the RSM's mips (issue "Every light type in the RSM techniques", part 4).
+// Only VSGL's footprints read levels > 0; vpl-brsm and LightSkin read level 0 (texelFetch), so
+// their RSM has one level and no downsample pass. Per attachment it is all or none: the kernel's
+// weights need flux and coverage whatever else is built, and a per-attachment branch in
+// rsm_downsample.comp changed VSGL's output by 17% on llvmpipe with the branch never taken.
+enum class RSMMips { None, All };
+
 class RSMPass {
 public:
-    explicit RSMPass(const gl::ShaderLoader& shaders);
+    explicit RSMPass(const gl::ShaderLoader& shaders, RSMMips mips = RSMMips::All);
     void reloadShaders(const gl::ShaderLoader& shaders);
-    // Renders every spot, point, area (emissive) and directional light's RSM and its mips. Throws Error when params.size is
-    // not a power of two. With no such light, nothing is drawn and layerCount() is 0.
+    // Renders every spot, point, area (emissive) and directional light's RSM and, with RSMMips::All,
+    // its mips. Throws Error when params.size is not a power of two. With no such light, nothing is
+    // drawn and layerCount() is 0.
     void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params,
                 gl::PassTimer* timer = nullptr);
-    // Recomputes levels 1.. from level 0 (render() calls it; public for the tests).
+    // Recomputes levels 1.. from level 0 (render() calls it with RSMMips::All; public for the tests).
     void downsample(gl::PassTimer* timer = nullptr);
 
     const gl::RenderTarget& target() const { return mTarget; }
@@ -146,7 +154,9 @@ public:
     // the light at a texel; bind it at shared::kBindingRSMLayers.
     const gl::Buffer& layerLights() const { return mLayerLights; }
     int layerCount() const { return static_cast<int>(mViews.size()); }
+    // Mip levels of the target: log2(size) + 1 with RSMMips::All, else 1.
     int levelCount() const { return mLevels; }
+    RSMMips mips() const { return mMips; }
     // The edge of the last render's layers: rsm.size, clamped to the GL limits (gl/api/limits.h).
     int size() const { return mSize; }
 
@@ -157,6 +167,7 @@ public:
 private:
     gl::Program mProgram;
     ComputePass mDownsample;
+    RSMMips mMips;
     gl::RenderTarget mTarget;
     std::vector<RSMView> mViews;
     gl::Buffer mLayerLights;

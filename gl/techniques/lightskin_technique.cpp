@@ -63,7 +63,8 @@ void LightSkinTechnique::visitParams(ParamVisitor& v)
 
 void LightSkinTechnique::createPasses(const gl::ShaderLoader& shaders)
 {
-    mRSM = std::make_unique<RSMPass>(shaders);
+    // The VALs are level-0 texels: no mips (RSMMips).
+    mRSM = std::make_unique<RSMPass>(shaders, RSMMips::None);
     mSampler = std::make_unique<ImportanceSampler>(shaders, "VAL selection");
     mViewSamplePass = ComputePass(shaders, "view samples", "passes/lightskin_view_samples.comp");
     mImportancePass = ComputePass(shaders, "VAL importance", "passes/lightskin_importance.comp");

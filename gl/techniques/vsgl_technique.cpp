@@ -53,7 +53,8 @@ void VSGLTechnique::visitParams(ParamVisitor& v)
 
 void VSGLTechnique::createPasses(const gl::ShaderLoader& shaders)
 {
-    mRSM = std::make_unique<RSMPass>(shaders);
+    // Only VSGL's footprints read the RSM's mips; vpl-brsm's VPLs read level 0.
+    mRSM = std::make_unique<RSMPass>(shaders, mPointLights ? RSMMips::None : RSMMips::All);
     mSampler = std::make_unique<ImportanceSampler>(shaders, "BRSM sampler");
     mViewRSMPass = ComputePass(shaders, "G-buffer as light", "passes/vsgl_view_rsm.comp");
     mGeneratePass = ComputePass(shaders, mPointLights ? "VPL generation" : "VSGL generation", "passes/vsgl_generate.comp");

@@ -1,7 +1,9 @@
 #version 450 core
-// G-buffer: world position, shading normal + roughness, base colour + metallic, emission + specular.
+// G-buffer: world position, shading normal + roughness, base colour + metallic, emission + specular,
+// geometric and interpolated normals (octahedral; gl/passes/gbuffer_pass.h says which is for what).
 // Material evaluation matches core/scene/surface.cpp (surfaceAt) so CPU and GPU see the same surface.
 #include "../lib/frame.glsl"
+#include "../shared/normals.h"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -22,10 +24,12 @@ layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outBaseColor;
 layout(location = 3) out vec4 outEmission;
+layout(location = 4) out vec4 outSurfaceNormals;
 
 void main()
 {
     vec3 n = normalize(vNormal);
+    vec3 interpolated = n;
     if (uTextures.x != 0) {
         vec3 t = normalize(vTangent.xyz);
         t = normalize(t - n * dot(n, t));
@@ -35,7 +39,17 @@ void main()
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
     // Double-sided materials are shaded on the side the viewer sees (core/scene/surface.cpp does the same).
-    if (uTextures.y != 0 && !gl_FrontFacing) n = -n;
+    if (uTextures.y != 0 && !gl_FrontFacing) {
+        n = -n;
+        interpolated = -interpolated;
+    }
+    // The triangle's plane from the screen-space derivatives of the position (one triangle per 2x2
+    // quad: helper invocations extend the same plane), on the shading normal's side as
+    // core/scene/surface.cpp keeps Embree's; a degenerate derivative falls back to the vertex normal.
+    vec3 geometric = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
+    float length2 = dot(geometric, geometric);
+    geometric = length2 > 0.0 ? geometric * inversesqrt(length2) : interpolated;
+    if (dot(geometric, n) < 0.0) geometric = -geometric;
 
     vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);
     vec4 mr = texture(uMetallicRoughnessTexture, vTexcoord);
@@ -47,4 +61,5 @@ void main()
     outNormal = vec4(n, roughness);
     outBaseColor = vec4(base.rgb, metallic);
     outEmission = vec4(emission, uMaterial.z);
+    outSurfaceNormals = vec4(octEncode(geometric), octEncode(interpolated));
 }

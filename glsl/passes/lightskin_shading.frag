@@ -13,11 +13,13 @@
 #include "../shared/brdf.h"
 #include "../shared/lightskin.h"
 #include "../shared/lightskin_gpu.h"
+#include "../shared/normals.h"
 
 layout(binding = kUnitGBufferPosition) uniform sampler2D uPosition;
 layout(binding = kUnitGBufferNormal) uniform sampler2D uNormal;
 layout(binding = kUnitGBufferBaseColor) uniform sampler2D uBaseColor;
 layout(binding = kUnitGBufferEmission) uniform sampler2D uEmission;
+layout(binding = kUnitGBufferSurfaceNormals) uniform sampler2D uSurfaceNormals;
 
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
 layout(std430, binding = kBindingLightCacheCells) readonly buffer Cells { uint cellStart[]; };
@@ -39,11 +41,14 @@ layout(location = 0) out vec4 outRadiance;
 
 // One interpolated proxy as a point light: f_r Phi / (4 pi) cos+ / d^2 (MATH.md 9.5), with the
 // pixel's Lambert lobe (diffuse proxy) or its GGX lobe (glossy proxy).
-vec3 shadeProxy(vec3 x, vec3 n, vec3 v, vec3 diffuse, vec3 f0, float roughness, vec3 proxyPosition, vec3 flux, bool glossy)
+// n_g, the G-buffer's geometric normal: a light below the triangle's plane (n_g . w <= 0) adds
+// nothing, as the path tracer drops a direction below the geometric surface (issue "Every light
+// type in the RSM techniques", part 2; the shading normal alone let a normal map tilt light in).
+vec3 shadeProxy(vec3 x, vec3 n, vec3 ng, vec3 v, vec3 diffuse, vec3 f0, float roughness, vec3 proxyPosition, vec3 flux, bool glossy)
 {
     vec3 toProxy = proxyPosition - x;
     float d2 = dot(toProxy, toProxy);
-    if (!(d2 > 0.0) || flux == vec3(0.0)) return vec3(0.0);
+    if (!(d2 > 0.0) || flux == vec3(0.0) || dot(ng, toProxy) <= 0.0) return vec3(0.0);
     vec3 l = toProxy * inversesqrt(d2);
     vec3 brdf = glossy ? evaluateBRDFCoefficients(vec3(0.0), f0, roughness, n, v, l)
                        : evaluateBRDFCoefficients(diffuse, vec3(0.0), 1.0, n, v, l);
@@ -61,12 +66,18 @@ void main()
     float specularFactor = texelFetch(uEmission, pixel, 0).a;
     vec3 x = position.xyz;
     vec3 n = normalize(normalRoughness.xyz);
+    // The geometric normal for the below-the-surface test (shadeProxy), the interpolated one
+    // (without the normal map) for the caches' lookup and eq. (8)'s weights, which compare it with
+    // the caches' geometric normals: a normal map's bumps no longer decide which caches a pixel takes.
+    vec4 surfaceNormals = texelFetch(uSurfaceNormals, pixel, 0);
+    vec3 ng = octDecode(surfaceNormals.xy);
+    vec3 ni = octDecode(surfaceNormals.zw);
     vec3 v = normalize(frame.cameraPosition.xyz - x);
     vec3 diffuse = (1.0 - baseMetallic.a) * baseMetallic.rgb;
     vec3 f0 = mix(vec3(0.04 * specularFactor), baseMetallic.rgb, baseMetallic.a);
 
     LightCacheNeighbours near;
-    findNearestLightCaches(uGridOrigin, uGridCellSize, uGridDims, x, n, kMaxLightCacheNeighbours, near);
+    findNearestLightCaches(uGridOrigin, uGridCellSize, uGridDims, x, ni, kMaxLightCacheNeighbours, near);
     if (near.count == 0) return;
     float maxDistance = sqrt(near.distance2[near.count - 1]);
     vec3 sumPositionD = vec3(0.0), sumFluxD = vec3(0.0), sumPositionG = vec3(0.0), sumFluxG = vec3(0.0);
@@ -79,9 +90,9 @@ void main()
         // A single cache, or several at the same distance, would all get weight 0: weigh them equally
         // (distance 0; not in the paper).
         float distance = near.distance2[0] >= near.distance2[near.count - 1] ? 0.0 : sqrt(near.distance2[i]);
-        float wd = interpolationWeight(distance, maxDistance, uExponent, dot(n, cn));
+        float wd = interpolationWeight(distance, maxDistance, uExponent, dot(ni, cn));
         vec3 gp = p.glossyPositionRadius.xyz;
-        vec3 rx = mirrorDirection(normalize(gp - x), n), rc = mirrorDirection(normalize(gp - cp), cn);
+        vec3 rx = mirrorDirection(normalize(gp - x), ni), rc = mirrorDirection(normalize(gp - cp), cn);
         float wg = interpolationWeight(distance, maxDistance, uExponent, dot(rx, rc));
         sumD += wd;
         sumPositionD += wd * p.diffusePositionRadius.xyz;
@@ -92,8 +103,8 @@ void main()
     }
     vec3 radiance = vec3(0.0);
     if (sumD > 0.0)
-        radiance += shadeProxy(x, n, v, diffuse, f0, normalRoughness.w, sumPositionD / sumD, sumFluxD / sumD, false);
+        radiance += shadeProxy(x, n, ng, v, diffuse, f0, normalRoughness.w, sumPositionD / sumD, sumFluxD / sumD, false);
     if (sumG > 0.0)
-        radiance += shadeProxy(x, n, v, diffuse, f0, normalRoughness.w, sumPositionG / sumG, sumFluxG / sumG, true);
+        radiance += shadeProxy(x, n, ng, v, diffuse, f0, normalRoughness.w, sumPositionG / sumG, sumFluxG / sumG, true);
     outRadiance = vec4(radiance, 1.0);
 }

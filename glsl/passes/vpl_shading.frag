@@ -8,11 +8,13 @@
 #include "../shared/shadow_atlas.h"
 #include "../shared/vpl.h"
 #include "../shared/ism.h"
+#include "../shared/normals.h"
 
 layout(binding = kUnitGBufferPosition) uniform sampler2D uPosition;
 layout(binding = kUnitGBufferNormal) uniform sampler2D uNormal;
 layout(binding = kUnitGBufferBaseColor) uniform sampler2D uBaseColor;
 layout(binding = kUnitGBufferEmission) uniform sampler2D uEmission;
+layout(binding = kUnitGBufferSurfaceNormals) uniform sampler2D uSurfaceNormals;
 layout(binding = kUnitVPLShadowMaps) uniform sampler2DArray uMaps;
 
 layout(std430, binding = kBindingVPLs) readonly buffer VPLs {
@@ -54,6 +56,10 @@ void main()
     vec4 emissionSpecular = texelFetch(uEmission, pixel, 0);
     vec3 p = position.xyz;
     vec3 n = normalize(normalRoughness.xyz);
+    // n_g, the G-buffer's geometric normal: a light below the triangle's plane (n_g . w <= 0) adds
+    // nothing, as the path tracer drops a direction below the geometric surface (issue "Every light
+    // type in the RSM techniques", part 2; the shading normal alone let a normal map tilt light in).
+    vec3 ng = octDecode(texelFetch(uSurfaceNormals, pixel, 0).xy);
     vec3 wo = normalize(frame.cameraPosition.xyz - p);
     SurfaceMaterial m = SurfaceMaterial(baseMetallic.rgb, baseMetallic.a, normalRoughness.w, emissionSpecular.a);
 
@@ -63,6 +69,7 @@ void main()
         GpuVPL vpl = vpls[i];
         if (vpl.positionValid.w == 0.0) continue;
         vec3 toVPL = vpl.positionValid.xyz - p;
+        if (dot(ng, toVPL) <= 0.0) continue;
         float g = vplGeometryTerm(n, vpl.normal.xyz, toVPL, uClampGeometry);
         if (g <= 0.0) continue;
         float v = visibility(i, vpl.positionValid.xyz, vpl.normal.xyz, p, n);

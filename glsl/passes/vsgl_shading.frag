@@ -8,9 +8,11 @@
 #include "../lib/ism.glsl"
 #include "../shared/rsm.h"
 #include "../shared/sg.h"
+#include "../shared/normals.h"
 
 layout(binding = kUnitGBufferPosition) uniform sampler2D uPosition;
 layout(binding = kUnitGBufferNormal) uniform sampler2D uNormal;
+layout(binding = kUnitGBufferSurfaceNormals) uniform sampler2D uSurfaceNormals;
 layout(binding = kUnitGBufferBaseColor) uniform sampler2D uBaseColor;
 layout(binding = kUnitGBufferEmission) uniform sampler2D uEmission;
 
@@ -47,6 +49,11 @@ void main()
     s.f0 = mix(vec3(0.04 * specularFactor), baseMetallic.rgb, baseMetallic.a);
     s.roughness = normalRoughness.w;
 
+    // n_g, the G-buffer's geometric normal: a light below the triangle's plane (n_g . w <= 0) adds
+    // nothing (for an SG light: its centre), as the path tracer drops a direction below the geometric surface (issue "Every light
+    // type in the RSM techniques", part 2; the shading normal alone let a normal map tilt light in).
+    vec3 ng = octDecode(texelFetch(uSurfaceNormals, pixel, 0).xy);
+
     VSGLReceiver receiver = vsglReceiver(s);
     vec3 sum = vec3(0.0);
     float cancelled = 0.0;
@@ -55,6 +62,7 @@ void main()
         VSGLight l = lights[i];
         if (l.normalValid.w == 0.0) continue;
         valid += 1.0;
+        if (dot(ng, l.positionRadius2.xyz - s.position) <= 0.0) continue;
         float v = uVisibility != 0 ? ismVisibility(i, l.positionRadius2.xyz, l.normalValid.xyz, s.position, s.normal) : 1.0;
         if (v == 0.0) continue;
         if (uPointLights != 0) {

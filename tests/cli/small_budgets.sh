@@ -3,7 +3,11 @@
 small_budgets() {
   small=()
   case "$1" in
-    lightskin-full) small=(--set rsm.size=128) ;; # shades every RSM texel at every cache
+    # LightSkin's RSM is 1024^2 by default, per layer: the moving-light Cornell box has 11 (the point
+    # light's six cube faces, the emissive panel's five), and lightskin-full shades every texel of
+    # them at every cache.
+    lightskin) small=(--set rsm.size=256) ;;
+    lightskin-full) small=(--set rsm.size=64) ;;
     smcir|ir) small=(--set "$1.vplCount=256") ;;
     smcir-rt) small=(--set smcir.vplCount=256) ;;
   esac

@@ -16,11 +16,15 @@ for t in $techniques; do
   grep -qx "technique = $t" "$work/all.txt" || { echo "FAIL: --technique all has no block for $t"; exit 1; }
 done
 
+here=$(cd "$(dirname "$0")" && pwd)
 cat > "$work/dump.sh" <<DUMP
 set -eu
+. "$here/small_budgets.sh"
 for t in $techniques; do
-  # Small window: the panel's keys come after the first frame, whatever it costs on llvmpipe.
-  "$vplgi" view --scene cornell --technique "\$t" --width 96 --height 64 \
+  # Small window and budgets (values do not change the keys): the panel's keys come after the
+  # first frame, whatever it costs on llvmpipe.
+  small_budgets "\$t"
+  "$vplgi" view --scene cornell --technique "\$t" --width 96 --height 64 "\${small[@]}" \
     --dump-panel-params "$work/panel-\$t.txt" > "$work/view-\$t.log" 2>&1 || { cat "$work/view-\$t.log"; exit 1; }
 done
 DUMP

@@ -559,16 +559,17 @@ TEST_CASE("smcir converges in a static scene: intensities even out, then stay ev
     SMCIRSampler sampler(scene, rays, smallParams(512, 0));
     const Camera camera = scene.cameras[0];
     sampler.initialize(camera);
+    // The spread of log I over the valid VPLs, robust: the interquartile range / 1.349 (the standard
+    // deviation for a normal distribution). Not the plain standard deviation: a new VPL whose
+    // independent radiance estimate came out 0 (log I = -27.6 at the floor) lifts it from 0.54 to
+    // 1.53 for one frame (measured on frame 46 of this run), which says nothing about the bulk.
     auto spreadOfLog = [](const VPLSet& set) {
-        double sum = 0.0, sum2 = 0.0;
-        int n = 0;
-        for (const VPL& v : set.slots) {
-            const double l = std::log(std::max(1e-12, static_cast<double>(luminance(v.intensity()))));
-            sum += l;
-            sum2 += l * l;
-            ++n;
-        }
-        return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+        std::vector<double> logs;
+        for (const VPL& v : set.slots)
+            if (v.valid) logs.push_back(std::log(std::max(1e-12, static_cast<double>(luminance(v.intensity())))));
+        std::sort(logs.begin(), logs.end());
+        const auto quantile = [&](double q) { return logs[static_cast<std::size_t>(q * (logs.size() - 1))]; };
+        return (quantile(0.75) - quantile(0.25)) / 1.349;
     };
     sampler.step(camera);
     const double firstCoV = intensityCoV(sampler.vpls()), firstLog = spreadOfLog(sampler.vpls());
@@ -587,8 +588,10 @@ TEST_CASE("smcir converges in a static scene: intensities even out, then stay ev
                 firstCoV, thirtyCoV, laterCoV, firstLog, thirtyLog, worstLog, moved);
     // The bulk evens out (sd of log I). The CoV is ruled by the few largest intensities, i.e. by the
     // noise of the VPLs' own radiance estimates, which since independentRadiance the selection no
-    // longer hides by keeping the estimates that came out high (measured 3.31 after 1 frame, 3.87
-    // after 30, 3.34 over frames 31-60): no check on it across the first 30 frames.
+    // longer hides by keeping the estimates that came out high (measured 2.71 after 1 frame, 4.12
+    // after 30, 2.98 over frames 31-60 on an AVX2 AMD EPYC; 3.31, 3.87, 3.34 where Embree took
+    // another code path: one trajectory, which moves with the CPU): no check on it across the
+    // first 30 frames. Robust sd(log I) measured 2.22, 0.49, worst of 31-60 0.47; moved 3.4 a frame.
     CHECK(thirtyLog < 0.6 * firstLog);
     CHECK(laterCoV < thirtyCoV);
     CHECK(worstLog < 1.05 * thirtyLog);

@@ -110,8 +110,8 @@ struct Fixture {
     explicit Fixture(const CpuGBuffer& g)
     {
         gl::RenderTargetDesc desc;
-        desc.colorFormats = {GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F};
-        desc.colorNames = {"position", "normal", "base colour", "emission"};
+        desc.colorFormats = {GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F};
+        desc.colorNames = {"position", "normal", "base colour", "emission", "surface normals"};
         desc.depthFormat = GL_DEPTH_COMPONENT32F;
         gbuffer.target = gl::RenderTarget("filter test gbuffer", desc);
         gbuffer.target.resize(g.width, g.height);

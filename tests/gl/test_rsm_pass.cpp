@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -179,13 +180,13 @@ struct Rendered {
     std::unique_ptr<RSMPass> pass;
 };
 
-Rendered renderRSM(const Scene& scene, int size)
+Rendered renderRSM(const Scene& scene, int size, RSMMips mips = RSMMips::All)
 {
     test::ensureGLContext();
     Rendered r;
     r.gpuScene = std::make_unique<GpuScene>(scene);
     r.lights = buildDirectLights(scene, DirectLightParams{});
-    r.pass = std::make_unique<RSMPass>(test::shaders());
+    r.pass = std::make_unique<RSMPass>(test::shaders(), mips);
     RSMParams params;
     params.size = size;
     r.pass->render(*r.gpuScene, r.lights, params);
@@ -320,6 +321,7 @@ TEST_CASE("RSM of a plane under a point light: six cube faces, positions and flu
     const float x0 = -2.0f, x1 = 2.0f, z0 = -2.0f, z1 = 4.0f;
     Scene scene = planeScene(x0, x1, z0, z1, 0.0f, rho);
     Light point;
+    point.name = "point";
     point.name = "point";
     point.type = LightType::Point;
     point.position = {0.0f, h, 0.0f};
@@ -549,4 +551,38 @@ TEST_CASE("rsm.size is set through visitParams and must be a power of two", "[rs
     pass.render(gpuScene, buildDirectLights(scene, DirectLightParams{}), params);
     CHECK(pass.levelCount() == 6);
     CHECK(pass.target().width() == 32);
+}
+
+TEST_CASE("RSM without mips (vpl-brsm, LightSkin): one level, level 0 bit for bit as with mips", "[rsm]")
+{
+    // RSMMips::None skips the downsample pass and allocates one level; what the techniques read
+    // (level 0) must not change. Compares the pass with itself (plumbing), for a spot and a point
+    // light's cube faces; the images of vpl-brsm and LightSkin are held by the conform CI subset.
+    Scene scene = planeScene(-2.0f, 2.0f, -2.0f, 2.0f, 0.0f, 0.5f);
+    scene.lights.push_back(spotDown({0.0f, 1.0f, 0.0f}, 2.0f, 0.5f, 0.6f));
+    Light point;
+    point.name = "point";
+    point.type = LightType::Point;
+    point.position = glm::vec3(0.5f, 0.8f, 0.2f);
+    point.color = glm::vec3(1.0f);
+    point.intensity = 3.0f;
+    scene.lights.push_back(point);
+    scene.validate();
+    const int size = 32;
+    Rendered all = renderRSM(scene, size, RSMMips::All);
+    Rendered none = renderRSM(scene, size, RSMMips::None);
+    CHECK(all.pass->levelCount() == 6);
+    CHECK(none.pass->levelCount() == 1);
+    CHECK(none.pass->target().color(0).desc().levels == 1);
+    REQUIRE(none.pass->layerCount() == 7);
+    REQUIRE(all.pass->layerCount() == none.pass->layerCount());
+    for (int layer = 0; layer < none.pass->layerCount(); ++layer) {
+        const Level a = readAll(*all.pass, 0, layer);
+        const Level b = readAll(*none.pass, 0, layer);
+        for (int k = 0; k < shared::kRSMAttachmentCount; ++k) {
+            INFO("layer " << layer << ", attachment " << k);
+            CHECK(std::memcmp(a[static_cast<std::size_t>(k)].data(), b[static_cast<std::size_t>(k)].data(),
+                              a[static_cast<std::size_t>(k)].size() * sizeof(glm::vec4)) == 0);
+        }
+    }
 }

@@ -210,7 +210,10 @@ TEST_CASE("smcir on the furnace: interleaved shading averages to the CPU gather 
     const double againstClosedForm = meanLuminance(gpu.indirect) / expected - 1.0;
     MEASURED("smcir furnace, I = 4096, interleaved: mean vs the CPU gather of the same VPLs " << againstGather
              << ", vs rho L_all " << againstClosedForm);
-    CHECK(std::abs(againstGather) < 3e-5); // measured 1.1e-5 and 7.9e-6: float summation order (GPU vs CPU)
+    // Measured 7.3e-5 (1.1e-5 before the geometric-normal test): float summation order, and VPLs
+    // within ~1e-3 rad of a pixel's triangle plane, which the GPU's geometric normal (screen-space
+    // derivatives, octahedral float16) and Embree's exact one put on different sides; 2.5x.
+    CHECK(std::abs(againstGather) < 1.8e-4);
     // The sampler's own bias at I = 4096 (measured +3.3%; smcir-rt furnace test: +3.5%); 8% as there.
     CHECK(std::abs(againstClosedForm) < 0.08);
 }
