@@ -1360,6 +1360,9 @@ Scene loadSceneSource(const std::string& source, const std::string& sceneFilePat
 //                     for point lights. A name that exists in the source replaces that animation.
 //   technique       string, the technique this scene selects by default
 //   settings        {"pass.param": number | bool | string}, stored as strings
+//   normalMaps      bool, default true: false drops every material's normal map, for the renderer
+//                     and the path tracer alike (a scene with and without its bumps, e.g. the glossy
+//                     room's normal-mapped floor: docs/conformance.md "Normals")
 SceneDescription loadSceneFile(const std::string& path)
 {
     requireFile(path);
@@ -1381,7 +1384,7 @@ SceneDescription loadSceneFileFromText(const std::string& text, const std::strin
     SceneFileReader r(path);
     r.checkKeys(doc, "",
                 {"name", "source", "replaceLights", "lights", "replaceCameras", "cameras", "animations", "technique",
-                 "settings"});
+                 "settings", "normalMaps"});
 
     const Json* source = SceneFileReader::find(doc, "source");
     if (source == nullptr) r.fail("", "needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -1396,6 +1399,9 @@ SceneDescription loadSceneFileFromText(const std::string& text, const std::strin
     }
     scene.source = path;
 
+    if (const Json* v = SceneFileReader::find(doc, "normalMaps"))
+        if (!r.boolean(*v, "", "normalMaps"))
+            for (Material& m : scene.materials) m.normalTexture = {};
     if (const Json* v = SceneFileReader::find(doc, "replaceLights"))
         if (r.boolean(*v, "", "replaceLights")) scene.lights.clear();
     if (const Json* v = SceneFileReader::find(doc, "lights")) {

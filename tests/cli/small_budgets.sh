@@ -6,8 +6,8 @@ small_budgets() {
     # LightSkin's RSM is 1024^2 by default, per layer: the moving-light Cornell box has 11 (the point
     # light's six cube faces, the emissive panel's five), and lightskin-full shades every texel of
     # them at every cache.
-    lightskin) small=(--set rsm.size=256) ;;
-    vsgl|vpl-brsm) small=(--set rsm.size=128) ;; # the BRSM importance: every texel of 11 layers x 256 view lights
+    lightskin) small=(--set rsm.size=128) ;;
+    vsgl|vpl-brsm) small=(--set rsm.size=64) ;; # the BRSM importance: every texel of 11 layers x 256 view lights
     lightskin-full) small=(--set rsm.size=64) ;;
     smcir|ir) small=(--set "$1.vplCount=256") ;;
     smcir-rt) small=(--set smcir.vplCount=256) ;;

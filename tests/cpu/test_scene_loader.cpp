@@ -23,6 +23,7 @@
 #include <sys/stat.h>
 #include <nlohmann/json.hpp>
 
+#include "core/scene/builtin_scenes.h"
 #include "core/scene/scene_loader.h"
 #include "core/util/error.h"
 #include "core/util/warning.h"
@@ -948,6 +949,30 @@ TEST_CASE("scene file: a glTF source relative to the file with replaced lights a
     vplgi::Scene animated = scene;
     vplgi::applyAnimation(animated, animated.animations.at(0), 4.0f);
     CHECK(near(animated.lights[0].direction, {1, 0, 0}));
+}
+
+TEST_CASE("scene file: \"normalMaps\": false drops every normal map, for the renderer and the path tracer",
+          "[scene_loader]")
+{
+    TempDir dir;
+    const std::string path = dir.file("flat.json");
+    const vplgi::Scene bumpy = vplgi::makeBuiltinScene("glossy");
+    int mapped = 0;
+    for (const vplgi::Material& m : bumpy.materials) mapped += m.normalTexture.valid() ? 1 : 0;
+    REQUIRE(mapped > 0); // the glossy room's floor and block
+    writeFile(path, R"({"source": "builtin:glossy", "normalMaps": false})");
+    const vplgi::Scene flat = vplgi::loadSceneFile(path).scene;
+    REQUIRE(flat.materials.size() == bumpy.materials.size());
+    for (std::size_t i = 0; i < flat.materials.size(); ++i) {
+        CHECK_FALSE(flat.materials[i].normalTexture.valid());
+        CHECK(flat.materials[i].baseColorTexture.image == bumpy.materials[i].baseColorTexture.image);
+    }
+    writeFile(path, R"({"source": "builtin:glossy", "normalMaps": true})");
+    int kept = 0;
+    for (const vplgi::Material& m : vplgi::loadSceneFile(path).scene.materials) kept += m.normalTexture.valid() ? 1 : 0;
+    CHECK(kept == mapped);
+    writeFile(path, R"({"source": "builtin:glossy", "normalMaps": 0})");
+    CHECK(errorOf([&] { vplgi::loadSceneFile(path); }) == path + ": \"normalMaps\" must be true or false");
 }
 
 TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
