@@ -322,7 +322,6 @@ TEST_CASE("RSM of a plane under a point light: six cube faces, positions and flu
     Scene scene = planeScene(x0, x1, z0, z1, 0.0f, rho);
     Light point;
     point.name = "point";
-    point.name = "point";
     point.type = LightType::Point;
     point.position = {0.0f, h, 0.0f};
     point.intensity = intensity;
