@@ -14,5 +14,6 @@ int runReference(const std::vector<std::string>& args);
 int runCompare(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 int runConform(const std::vector<std::string>& args);
+int runSMCIRSelection(const std::vector<std::string>& args);
 
 } // namespace vplgi

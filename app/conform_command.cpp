@@ -143,32 +143,7 @@ std::optional<ConformOptions> parseConformOptions(const std::vector<std::string>
     return o;
 }
 
-// The mean of `values` with the half-width of its 95% Student-t interval (0 for one value).
-struct Interval {
-    double mean = 0.0;
-    double halfWidth = 0.0;
-    int count = 0;
-};
-
-Interval intervalOf(const std::vector<double>& values)
-{
-    // t_{0.975, df} for df = 1..30; 1.96 beyond.
-    static const double kT[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
-                                2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
-                                2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
-    Interval r;
-    r.count = static_cast<int>(values.size());
-    if (values.empty()) return r;
-    for (double v : values)
-        r.mean += v / r.count;
-    if (r.count < 2) return r;
-    double variance = 0.0;
-    for (double v : values)
-        variance += (v - r.mean) * (v - r.mean) / (r.count - 1);
-    const int df = r.count - 1;
-    r.halfWidth = (df <= 30 ? kT[df - 1] : 1.96) * std::sqrt(variance / r.count);
-    return r;
-}
+using Interval = MeanInterval; // core/util/metrics.h
 
 Json toJson(const Interval& i)
 {
@@ -178,18 +153,6 @@ Json toJson(const Interval& i)
 Interval intervalFromJson(const Json& j)
 {
     return Interval{j.at("mean").get<double>(), j.at("halfWidth95").get<double>(), j.at("count").get<int>()};
-}
-
-// "+1.2% [+0.3, +2.1]" or "+1.2%" for one value.
-std::string percentText(const Interval& i)
-{
-    char text[96];
-    if (i.count < 2)
-        std::snprintf(text, sizeof text, "%+.1f%%", 100.0 * i.mean);
-    else
-        std::snprintf(text, sizeof text, "%+.1f%% [%+.1f, %+.1f]", 100.0 * i.mean, 100.0 * (i.mean - i.halfWidth),
-                      100.0 * (i.mean + i.halfWidth));
-    return text;
 }
 
 struct Cell {
@@ -392,17 +355,7 @@ Cell runCell(const ConformOptions& o, const std::string& sceneSpec,
         truthBias.push_back(cell.truthMean > 0.0 ? mean / cell.truthMean - 1.0 : 0.0);
         absE.push_back(errors.meanAbsToneMapped);
         p999.push_back(errors.p999AbsToneMapped);
-        if (o.frames >= 10) {
-            auto windowMean = [&](double from, double to) {
-                const int a = static_cast<int>(from * o.frames), b = static_cast<int>(to * o.frames);
-                double sum = 0.0;
-                for (int f = a; f < b; ++f)
-                    sum += frameMeans[static_cast<std::size_t>(f)] / (b - a);
-                return sum;
-            };
-            const double early = windowMean(0.4, 0.5);
-            drift.push_back(early > 0.0 ? windowMean(0.9, 1.0) / early - 1.0 : 0.0);
-        }
+        if (o.frames >= 10) drift.push_back(driftOf(frameMeans));
         if (sealed) {
             // The same technique and seed from inside the closed room: nothing may arrive there.
             Session inside(sessionFor(o, sceneSpec, scene, technique, extra, "closed"));
@@ -424,11 +377,11 @@ Cell runCell(const ConformOptions& o, const std::string& sceneSpec,
             writeImage(prefix + "-error.png", errorHeatMap(image, matched, exposure, 0.25));
         }
     }
-    cell.matchedBias = intervalOf(matchedBias);
-    cell.truthBias = intervalOf(truthBias);
-    cell.absE = intervalOf(absE);
-    cell.p999 = intervalOf(p999);
-    cell.drift = intervalOf(drift);
+    cell.matchedBias = meanInterval(matchedBias);
+    cell.truthBias = meanInterval(truthBias);
+    cell.absE = meanInterval(absE);
+    cell.p999 = meanInterval(p999);
+    cell.drift = meanInterval(drift);
     if (sealed) cell.sealedLeak = litMean > 0.0 ? closedMax / litMean : (closedMax > 0.0 ? 1e30 : 0.0);
     return cell;
 }

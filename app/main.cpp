@@ -23,6 +23,7 @@ const char* kUsage =
     "  compare  render techniques and references, write an HTML report with metrics and plots\n"
     "  bench    per-pass timings of a technique (and ratios against another)\n"
     "  conform  every technique against the path tracer over seeds and scenes (bias with intervals)\n"
+    "  smcir-selection  what SMCIR's selection adds over the frames (CPU sampler only, over seeds)\n"
     "  scenes   list the built-in scenes and techniques\n";
 
 } // namespace
@@ -44,8 +45,9 @@ int main(int argc, char** argv)
         if (command == "compare") return vplgi::runCompare(args);
         if (command == "bench") return vplgi::runBench(args);
         if (command == "conform") return vplgi::runConform(args);
+        if (command == "smcir-selection") return vplgi::runSMCIRSelection(args);
         throw vplgi::Error("unknown command \"" + command +
-                           "\" (commands: render, view, reference, compare, bench, conform, scenes; see vplgi --help)");
+                           "\" (commands: render, view, reference, compare, bench, conform, smcir-selection, scenes; see vplgi --help)");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "vplgi: error: %s\n", e.what());
         return 1;

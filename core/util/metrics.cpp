@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "glsl/shared/tonemap.h"
 #include "core/util/error.h"
@@ -263,6 +264,52 @@ std::vector<glm::ivec2> indirectTrackedPixels(const ImageRGBA32F& direct, const 
             nearest[i] = std::min(nearest[i], distance2(candidates[i], glm::dvec2(candidates[best])));
     }
     return chosen;
+}
+
+MeanInterval meanInterval(const std::vector<double>& values)
+{
+    // t_{0.975, df} for df = 1..30; 1.96 beyond.
+    static const double kT[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                                2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                                2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+    MeanInterval r;
+    r.count = static_cast<int>(values.size());
+    if (values.empty()) return r;
+    for (double v : values)
+        r.mean += v / r.count;
+    if (r.count < 2) return r;
+    double variance = 0.0;
+    for (double v : values)
+        variance += (v - r.mean) * (v - r.mean) / (r.count - 1);
+    const int df = r.count - 1;
+    r.halfWidth = (df <= 30 ? kT[df - 1] : 1.96) * std::sqrt(variance / r.count);
+    return r;
+}
+
+std::string percentText(const MeanInterval& i)
+{
+    char text[96];
+    if (i.count < 2)
+        std::snprintf(text, sizeof text, "%+.1f%%", 100.0 * i.mean);
+    else
+        std::snprintf(text, sizeof text, "%+.1f%% [%+.1f, %+.1f]", 100.0 * i.mean, 100.0 * (i.mean - i.halfWidth),
+                      100.0 * (i.mean + i.halfWidth));
+    return text;
+}
+
+double driftOf(const std::vector<double>& perFrame)
+{
+    const int n = static_cast<int>(perFrame.size());
+    require(n >= 10, "driftOf needs at least 10 frames");
+    auto windowMean = [&](double from, double to) {
+        const int a = static_cast<int>(from * n), b = static_cast<int>(to * n);
+        double sum = 0.0;
+        for (int f = a; f < b; ++f)
+            sum += perFrame[static_cast<std::size_t>(f)] / (b - a);
+        return sum;
+    };
+    const double early = windowMean(0.4, 0.5);
+    return early > 0.0 ? windowMean(0.9, 1.0) / early - 1.0 : 0.0;
 }
 
 } // namespace vplgi

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -80,5 +81,21 @@ std::vector<glm::ivec2> trackedPixels(int width, int height, int count);
 // Throws Error when the images differ in size.
 constexpr double kTrackedMinIndirectFraction = 0.1;
 std::vector<glm::ivec2> indirectTrackedPixels(const ImageRGBA32F& direct, const ImageRGBA32F& indirect, int count);
+
+// The mean of `values` with the half-width of its 95% Student-t interval (0 for one value): how
+// `conform` and `smcir-selection` report a quantity measured over seeds.
+struct MeanInterval {
+    double mean = 0.0;
+    double halfWidth = 0.0;
+    int count = 0;
+};
+MeanInterval meanInterval(const std::vector<double>& values);
+// "+1.2% [+0.3, +2.1]" (a fraction as percent, with its interval) or "+1.2%" for one value.
+std::string percentText(const MeanInterval& i);
+
+// The drift of a per-frame series of N values (N >= 10): the mean of frames [0.9 N, N) over that of
+// [0.4 N, 0.5 N), minus 1 (0 when the early mean is not positive). `conform --frames` and
+// `smcir-selection` report it.
+double driftOf(const std::vector<double>& perFrame);
 
 } // namespace vplgi

@@ -21,6 +21,9 @@ void IRParams::visitParams(ParamVisitor& v)
     v.field("ir.vplCount", vplCount, 1, 1 << 20, "I: VPL budget (slots)");
     v.field("ir.bounces", bounces, 1, 64, "most surface hits per light path that deposit a VPL (paper: 3)");
     v.field("ir.pathCap", pathCap, 1, 65536, "at most pathCap * I light paths per frame (open scenes)");
+    v.field("ir.fillBudget", fillBudget,
+            "emit paths until every slot is taken (ours); false = the paper's IR: the path count that would fill "
+            "the budget in a closed scene, so escaping photons leave slots empty (SMCIR 730-733)");
     v.field("ir.seed", seed, "random stream seed (same seed and lights, same VPLs)");
     v.field("ir.fixedSequence", fixedSequence,
             "the same random sequence every frame (Wald et al., SMCIR 2.3); false = re-seed every frame as the "
@@ -333,6 +336,15 @@ void IRSampler::buildFrame(const FrameSnapshot& snapshot)
             if (counts[k] == 0) ++mStats.pathsEscaped;
             for (int j = 0; j < counts[k] && taken.size() < slotCount; ++j) taken.push_back(deposits[k * bounces + j]);
             full = taken.size() == slotCount;
+            if (!mParams.fillBudget && !full) {
+                // The paper's IR: N is the path count that fills the budget in a closed scene. Each
+                // escaped path is charged the deposits of an average path that stayed, so N stops
+                // where the paths, had none escaped, would have filled every slot.
+                const std::uint64_t stayed = mStats.paths - mStats.pathsEscaped;
+                const double charged = static_cast<double>(taken.size()) +
+                                       (stayed > 0 ? static_cast<double>(mStats.pathsEscaped) * taken.size() / stayed : 0.0);
+                full = charged >= static_cast<double>(slotCount);
+            }
         }
         next += batch;
     }

@@ -20,7 +20,9 @@
 //                   the light itself: Keller's j = 0 is direct light, which the renderer draws), go on
 //                   with a cosine-sampled direction and Russian roulette on the diffuse albedo.
 //  3. slots         deposits fill the slots in path order until all I are taken (the path that takes
-//                   the last slot loses its later deposits) or `pathCap * I` paths were emitted.
+//                   the last slot loses its later deposits) or `pathCap * I` paths were emitted;
+//                   with ir.fillBudget = false (the paper's IR) until the paths would have filled
+//                   them had none escaped.
 //  4. intensities   with N the paths emitted and n the VPLs deposited, each VPL gets its intensity.
 //
 // Details
@@ -118,6 +120,12 @@ struct IRParams {
     int vplCount = 2048;         // I: the VPL budget (slots) [1, 2^20]; SMCIR's default budget
     int bounces = 3;             // most surface hits per path that deposit a VPL (paper's experiments: 3) [1, 64]
     int pathCap = 64;            // at most pathCap * I paths per frame, full or not (open scenes) [1, 65536]
+    bool fillBudget = true;      // true (ours): paths are emitted until all I slots are taken, a stronger
+                                 // baseline in open scenes. false: the paper's IR, which "may not use the
+                                 // full VPL budget if photons exit" (SMCIR 730-733): N is the path count
+                                 // that would fill the budget had no path escaped (each escaped path charged
+                                 // the mean deposits of the paths that stayed), so about (1 - escaped
+                                 // fraction) I slots are used
     std::uint32_t seed = 1;      // random stream seed: the same seed (and lights) gives the same VPLs
     bool fixedSequence = false;  // false: a new random sequence every frame (the paper's IR); true: the
                                  // same sequence every frame (Wald et al., SMCIR 2.3; not in Table 1)

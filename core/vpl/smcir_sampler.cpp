@@ -47,6 +47,14 @@ void SMCIRParams::visitParams(ParamVisitor& v)
             "most reflections of the radiance paths, counting the one at the VPL (3.2.3: 3)");
     v.field("smcir.knnRender", knnRender, 0, 1024,
             "k of the rendering densities; 0 = eq. (8), max(1, floor(sqrt(I/32)))");
+    v.choice("smcir.rankRadiance", rankRadiance, {"rendered", "candidate"},
+             "the radiance lines 9-12 rank VPLs by: rendered (the paper: the value each renders with) or "
+             "candidate (F1, ours: its line-7 candidate estimate, independent of the rendered one)");
+    v.field("smcir.knnCountsSelf", knnCountsSelf,
+            "eq. (7) counts y as its own first neighbour (F2, a reading of 3.2.4: p = k / (n pi r^2), r the "
+            "distance to the (k-1)-th other VPL, k >= 2); false: self excluded (MATH.md 2)");
+    v.field("smcir.knnRank", knnRank, 0, 1024,
+            "k of the densities lines 9-12 rank VPLs by (F3, ours); 0 = the rendering k");
     v.field("smcir.strongFraction", strongFraction, 0.0f, 1.0f,
             "eq. (9): candidates stronger than this fraction of the VPLs are strong");
     v.field("smcir.cameraSamplesX", cameraSamplesX, 1, 4096, "camera-ray grid columns (jittered per frame)");
@@ -156,6 +164,10 @@ struct SMCIRSampler::SlotState {
     CameraPoint associated;         // 3.2.2 mail box: a camera-visible point that sees the VPL
     std::uint32_t radianceSeed = 0; // 3.2.3: kept for the VPL's life
     std::uint64_t radianceKey = 0;  // radiance cache: the lights (radianceKeyOf) the value was computed for
+    glm::vec3 rankRadiance{0.0f};   // what lines 9-12 rank it by (smcir.rankRadiance = candidate): its line-7
+                                    // estimate, seed rankSeed, re-estimated when the lights change (rankKey)
+    std::uint32_t rankSeed = 0;
+    std::uint64_t rankKey = 0;
     bool screened = false;          // the value is the candidate's (a screening estimate, or the one it was
                                     // selected on): line 18 re-estimates it
 };
@@ -466,18 +478,34 @@ void SMCIRSampler::estimateCandidateRadiance(std::vector<Candidate>& candidates)
 
 void SMCIRSampler::estimateStaleRadiance()
 {
+    // Work items: 2 slot for the rendered value, 2 slot + 1 for the ranking value (F1: with the lights
+    // changed, a VPL is ranked by a fresh estimate with its candidate seed, still independent of the
+    // rendered one).
+    const bool separateRank = ranksByCandidateRadiance();
     std::vector<std::uint32_t> stale;
-    for (std::size_t slot = 0; slot < mSlots.size(); ++slot)
-        if (mSet.slots[slot].valid && (mSlots[slot].screened || mSlots[slot].radianceKey != mRadianceKey))
-            stale.push_back(static_cast<std::uint32_t>(slot));
+    for (std::size_t slot = 0; slot < mSlots.size(); ++slot) {
+        if (!mSet.slots[slot].valid) continue;
+        if (mSlots[slot].screened || mSlots[slot].radianceKey != mRadianceKey)
+            stale.push_back(static_cast<std::uint32_t>(2 * slot));
+        if (separateRank && mSlots[slot].rankKey != mRadianceKey)
+            stale.push_back(static_cast<std::uint32_t>(2 * slot + 1));
+    }
     std::vector<std::uint64_t> rays(stale.size(), 0);
     parallelFor(stale.size(), 4, [&](std::size_t i) {
-        const std::uint32_t slot = stale[i];
-        mSet.slots[slot].radiance =
-            mEstimator->estimate(mSlots[slot].surface, mParams.radiositySamples, mSlots[slot].radianceSeed, &rays[i]);
-        mSlots[slot].radianceKey = mRadianceKey;
-        mSlots[slot].screened = false;
+        const std::uint32_t slot = stale[i] / 2;
+        SlotState& state = mSlots[slot];
+        if (stale[i] % 2 == 0) {
+            mSet.slots[slot].radiance = mEstimator->estimate(state.surface, mParams.radiositySamples, state.radianceSeed, &rays[i]);
+            state.radianceKey = mRadianceKey;
+            state.screened = false;
+        } else {
+            state.rankRadiance = mEstimator->estimate(state.surface, candidateSamples(), state.rankSeed, &rays[i]);
+            state.rankKey = mRadianceKey;
+        }
     });
+    if (!separateRank)
+        for (std::size_t slot = 0; slot < mSlots.size(); ++slot)
+            mSlots[slot].rankRadiance = mSet.slots[slot].radiance;
     mRayCount += std::accumulate(rays.begin(), rays.end(), std::uint64_t{0});
     mEstimates += static_cast<int>(stale.size());
 }
@@ -507,9 +535,11 @@ void SMCIRSampler::estimateRenderingDensities()
         slots.push_back(static_cast<std::uint32_t>(slot));
         positions.push_back(mSet.slots[slot].position);
     }
-    // k of eq. (8) (or knnRender), among the other VPLs.
+    // k of eq. (8) (or knnRender); r_k to the k-th other VPL, or with knnCountsSelf to the k-th
+    // counting y itself (a point is its own nearest neighbour in the index: distance 0).
     const std::size_t n = positions.size();
-    const std::size_t k = n > 1 ? std::min(static_cast<std::size_t>(mRenderK), n - 1) : 0;
+    const KNNChoice render = knnChoice(mRenderK, n);
+    const std::size_t k = render.k;
     const std::size_t slotCount = mSet.slots.size();
     if (mDensityPositions.size() != slotCount) {
         mDensityPositions.assign(slotCount, glm::vec3(0.0f));
@@ -528,7 +558,7 @@ void SMCIRSampler::estimateRenderingDensities()
         if (vpl.valid) changedPoints.push_back(vpl.position);
     }
     const KNNIndex index(std::move(positions));
-    const bool incremental = mDensityK == k;
+    const bool incremental = mDensityK == render.neighbour;
     parallelFor(slots.size(), 64, [&](std::size_t i) {
         const std::uint32_t slot = slots[i];
         bool requery = !incremental || slotChanged[slot] != 0;
@@ -536,16 +566,46 @@ void SMCIRSampler::estimateRenderingDensities()
             const glm::vec3 d = changedPoints[c] - mSet.slots[slot].position;
             requery = glm::dot(d, d) <= mDensityR2[slot]; // inside (or on) the k-th neighbour sphere
         }
-        // A point is its own nearest neighbour (distance 0): the k-th other is the (k+1)-th.
-        if (requery) mDensityR2[slot] = k > 0 ? index.kthDistanceSquared(mSet.slots[slot].position, k + 1) : 0.0f;
+        if (requery)
+            mDensityR2[slot] = k > 0 ? index.kthDistanceSquared(mSet.slots[slot].position, render.neighbour) : 0.0f;
     });
     for (std::size_t slot = 0; slot < slotCount; ++slot) {
         mDensityValid[slot] = mSet.slots[slot].valid ? 1 : 0;
         mDensityPositions[slot] = mSet.slots[slot].position;
     }
-    mDensityK = k;
+    mDensityK = render.neighbour;
     for (std::uint32_t slot : slots)
         mSet.slots[slot].density = k > 0 ? estimateKNNDensity(k, n, mDensityR2[slot]) : 0.0f;
+
+    // F3 (smcir.knnRank): the densities lines 9-12 of the next frame rank by, with their own k.
+    mRankDensity.assign(slotCount, 0.0f);
+    const KNNChoice rank = knnChoice(mParams.knnRank > 0 ? mParams.knnRank : mRenderK, n);
+    if (rank.neighbour == render.neighbour) {
+        for (std::uint32_t slot : slots)
+            mRankDensity[slot] = mSet.slots[slot].density;
+        return;
+    }
+    parallelFor(slots.size(), 64, [&](std::size_t i) {
+        const std::uint32_t slot = slots[i];
+        mRankDensity[slot] =
+            rank.k > 0 ? estimateKNNDensity(rank.k, n, index.kthDistanceSquared(mSet.slots[slot].position, rank.neighbour))
+                       : 0.0f;
+    });
+}
+
+SMCIRSampler::KNNChoice SMCIRSampler::knnChoice(int wanted, std::size_t n) const
+{
+    KNNChoice c;
+    if (mParams.knnCountsSelf) {
+        if (n < 2) return c; // a lone VPL has no neighbour to measure its density with
+        c.k = std::min(static_cast<std::size_t>(std::max(wanted, 2)), n);
+        c.neighbour = c.k; // y is the first
+    } else {
+        if (n < 2) return c;
+        c.k = std::min(static_cast<std::size_t>(wanted), n - 1);
+        c.neighbour = c.k + 1; // the k-th other
+    }
+    return c;
 }
 
 // Numeric guard before publication: every valid slot has a finite radiance, a finite density >= 0
@@ -584,6 +644,29 @@ void SMCIRSampler::assignSlot(std::uint32_t slot, const Candidate& candidate, co
     state.radianceSeed = mParams.independentRadiance ? mix64(candidate.seed ^ 0x9E3779B97F4A7C15ull) : candidate.seed;
     state.radianceKey = mRadianceKey;
     state.screened = mParams.independentRadiance || candidateSamples() != mParams.radiositySamples;
+    state.rankRadiance = candidate.radiance;
+    state.rankSeed = candidate.seed;
+    state.rankKey = mRadianceKey;
+}
+
+std::vector<glm::vec3> SMCIRSampler::estimateRadianceAgain(int samples, std::uint32_t seed) const
+{
+    require(mInitialized && mEstimator, "smcir: estimateRadianceAgain() before initialize()");
+    require(samples >= 1, "smcir: estimateRadianceAgain() needs samples >= 1");
+    std::vector<glm::vec3> radiance(mSet.slots.size(), glm::vec3(0.0f));
+    parallelFor(mSet.slots.size(), 4, [&](std::size_t slot) {
+        if (!mSet.slots[slot].valid) return;
+        const auto pathSeed = static_cast<std::uint32_t>(mix64((std::uint64_t{seed} << 32) ^ slot));
+        radiance[slot] = mEstimator->estimate(mSlots[slot].surface, samples, pathSeed);
+    });
+    return radiance;
+}
+
+bool SMCIRSampler::ranksByCandidateRadiance() const
+{
+    // Without independentRadiance (and with equal samples) the candidate estimate is the rendered one.
+    return mParams.rankRadiance == kRankByCandidateRadiance &&
+           (mParams.independentRadiance || candidateSamples() != mParams.radiositySamples);
 }
 
 int SMCIRSampler::candidateSamples() const
@@ -736,7 +819,8 @@ void SMCIRSampler::step(const FrameSnapshot& snapshot)
     for (std::size_t slot = 0; slot < slotCount; ++slot) {
         const VPL& vpl = mSet.slots[slot];
         if (!vpl.valid) continue;
-        intensity[slot] = intensityOf(vpl.radiance, vpl.density);
+        // Lines 9-12 rank by the radiance of smcir.rankRadiance and the density of smcir.knnRank.
+        intensity[slot] = intensityOf(mSlots[slot].rankRadiance, mRankDensity[slot]);
         sorted.push_back(intensity[slot]);
         if (!validated[slot]) ++invalidCount;
     }

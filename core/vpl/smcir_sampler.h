@@ -86,8 +86,12 @@
 //  the set (I when full). Candidates: k = 1 against the current Y (candidates are not in Y, so
 //  nothing is excluded); a candidate near an existing VPL gets a high density and a low intensity,
 //  which spreads VPLs like blue noise. Rendering: k = knnRender, or 0 = eq. (8) read as
-//  k = max(1, floor(sqrt(I / 32))) (papers/README.md: 8 at I = 2048), self excluded. Lines 8 and
-//  19 use n, not the budget, so a set that is not full still integrates to 1.
+//  k = max(1, floor(sqrt(I / 32))) (papers/README.md: 8 at I = 2048). "The k-th nearest neighbour
+//  of y among the current VPLs in Y" has two readings: y excluded (r_k to the k-th other VPL;
+//  MATH.md 2; unbiased on a Poisson set) or y counted as its own first neighbour (r_k to the
+//  (k-1)-th other; smcir.knnCountsSelf, the default, k raised to 2: -1/k on a Poisson set, and
+//  about right on the evolved, more regular one; see "Selection" below). Lines 8 and 19 use n, not
+//  the budget, so a set that is not full still integrates to 1.
 //
 //  Undersampled regions (3.2.5, eq. 9, lines 9-17): intensities are compared by luminance (Rec.
 //  709). M_strong counts candidates whose intensity exceeds that of strongFraction (95 %) of the
@@ -96,15 +100,19 @@
 //  invalid VPLs from the weakest up, and, while fewer than M_min, the weakest valid VPLs. Freed
 //  slots get the strongest remaining candidates; a slot left without one becomes empty.
 //
-//  Known biases of the method (measured in the furnace: tests/cpu/test_smcir_sampler.cpp, test
-//  case "smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (5) = rho L_all",
-//  which prints them: ./build/tests/vplgi_tests_cpu "smcir furnace*"): the k = 1 ranking of
-//  candidates makes the set blue noise, and kNN on a repulsive set over-estimates 1/p after
-//  warm-up, less as k grows (right after initialize(), before any selection, mean 1/p is the
-//  sphere's area up to noise; the test allows 3 %). Ranking by a radiance estimate that is frozen
-//  per VPL also keeps the VPLs whose estimate came out high when the estimate is noisy (test case
-//  "smcir: VPLs render with radiance estimates independent of the ones they were selected on").
-//  The paper accepts this: the method is biased but consistent (3.3).
+//  Selection (docs/smcir.md, "Selection bias"; core/vpl/smcir_selection.h measures it). Lines 9-12
+//  rank the VPLs by their intensities and render with them: the survivors are the VPLs whose
+//  estimates came out high, and the bias grows with the frames (the winner's curse; the paper
+//  accepts a biased, consistent method, 3.3). Two parts:
+//   - radiance: the paper ranks a VPL by the value it renders with. smcir.rankRadiance = candidate
+//     (F1, ours, the default) ranks it by its line-7 candidate estimate and renders with an
+//     independent lifetime estimate (independentRadiance); when the lights change both are
+//     re-estimated, each with its own seed (line 18). The radiance part is then 0 at every frame.
+//   - density: ranking by last frame's r_k keeps the VPLs whose r_k came out large, and k = 1
+//     candidate densities make the set blue noise, on which kNN with y excluded over-estimates 1/p
+//     (the furnace's area identity: +10% after 100 frames). knnCountsSelf (F2, the default) offsets
+//     it, knnRank (F3) ranks with another k than the renderer's. Neither makes the density part
+//     stop growing; docs/smcir.md has the table over 8 seeds.
 //
 //  Stable slots: a VPL keeps its slot for its life. VPLSet::changed lists the slots whose VPL was
 //  replaced or removed by the last step (their shadow maps must be redrawn); it is sorted and has
@@ -166,6 +174,9 @@ namespace vplgi {
 class ParamVisitor;
 class ReflectedRadianceEstimator;
 
+constexpr int kRankByRenderedRadiance = 0;  // smcir.rankRadiance = rendered (the paper)
+constexpr int kRankByCandidateRadiance = 1; // smcir.rankRadiance = candidate (F1, ours)
+
 struct SMCIRParams {
     int vplCount = 2048;            // I: the VPL budget (slots) [1, 2^20]
     int maxMoves = 16;              // M_max: most slots that change per frame [0, 2^20]
@@ -205,6 +216,20 @@ struct SMCIRParams {
                                      // tests/cpu/test_smcir_sampler.cpp, prints both). The paper's text
                                      // allows both readings ("the intensities are re-estimated for the
                                      // remaining VPLs", a VPL-specific seed for the VPL's lifetime)
+    // The selection (lines 9-12) without the winner's curse (docs/smcir.md, "Selection bias"): lines
+    // 9-12 rank the VPLs by estimates, and rendering with the very estimates they survived on keeps
+    // the VPLs whose estimates came out high, a bias that grows with the frames.
+    int rankRadiance = kRankByCandidateRadiance; // the radiance lines 9-12 rank a VPL by: kRankByRenderedRadiance
+                                     // (the paper: the value it renders with) or kRankByCandidateRadiance (F1,
+                                     // ours: its line-7 candidate estimate, independent of the rendered one
+                                     // when independentRadiance; re-estimated with the candidate's seed when
+                                     // the lights change). Key "smcir.rankRadiance" ("rendered", "candidate")
+    bool knnCountsSelf = true;       // F2, a reading the paper permits (3.2.4: "the k-th nearest neighbour
+                                     // of y among the current VPLs in Y", y in Y): y is its own first
+                                     // neighbour, p = k / (n pi r^2) with r the distance to the (k-1)-th other
+                                     // VPL (k raised to 2 where it is 1). false: MATH.md 2's reading, self
+                                     // excluded, unbiased on a Poisson set (this one is -1/k there)
+    int knnRank = 0;                 // F3 (ours): k of the densities lines 9-12 rank VPLs by; 0 = the rendering k
     bool reestimateEveryFrame = false; // every frame is a new radiance-cache key: the moving-light cost
                                        // (a measurement aid; key "smcir.invalidateEveryFrame")
 
@@ -277,6 +302,10 @@ public:
     // lastTimes() in SMCIR Table 2's columns, for `vplgi bench`.
     StatList stats() const override;
     const SMCIRStageTimes& lastTimes() const { return mTimes; }
+    // Diagnostics (core/vpl/smcir_selection.h): each slot's radiance estimated anew with `samples`
+    // paths and seeds derived from `seed`, by the last frame's estimator (its lights and materials);
+    // black for empty slots. Requires initialize().
+    std::vector<glm::vec3> estimateRadianceAgain(int samples, std::uint32_t seed) const;
     const SMCIRParams& params() const { return mParams; }
     // Frames run so far (initialization is frame 0; each step adds one).
     std::uint64_t frame() const { return mFrame; }
@@ -301,6 +330,12 @@ private:
     void estimateStaleRadiance();
     void estimateRenderingDensities();
     void guardPublishedVPLs();
+    struct KNNChoice {
+        std::size_t k = 0;         // numerator of eq. (7); 0: no density (fewer than 2 VPLs)
+        std::size_t neighbour = 0; // r is the distance to this neighbour in the index (y itself is the 1st)
+    };
+    KNNChoice knnChoice(int wanted, std::size_t n) const; // smcir.knnCountsSelf's two readings
+    bool ranksByCandidateRadiance() const;
     void assignSlot(std::uint32_t slot, const Candidate& candidate, const std::vector<CameraPoint>& points);
     void clearSlot(std::uint32_t slot);
 
@@ -313,7 +348,8 @@ private:
     std::vector<glm::vec3> mDensityPositions;
     std::vector<float> mDensityR2;
     std::vector<char> mDensityValid;
-    std::size_t mDensityK = ~std::size_t{0}; // k of that estimate (a different k recomputes everything)
+    std::size_t mDensityK = ~std::size_t{0}; // neighbour of that estimate (a different one recomputes all)
+    std::vector<float> mRankDensity;              // per slot, the density lines 9-12 rank by (smcir.knnRank)
     float mOffset = 1e-4f;                        // ray offset along geometric normals [m]
     std::unique_ptr<ReflectedRadianceEstimator> mEstimator; // rebuilt each frame from the snapshot's lights
     UntexturedMaterials mUntextured;              // section 5: mean albedos (unless texturedVPLs)

@@ -263,9 +263,10 @@ TEST_CASE("smcir parameters: paper defaults, one field list, eq. (8)", "[smcir][
                             "smcir.strongFraction", "smcir.cameraSamplesX", "smcir.cameraSamplesY",
                             "smcir.warmupIterations", "smcir.seed", "smcir.candidateRadianceSamples",
                             "smcir.candidateDensityGrid", "smcir.texturedVPLs", "smcir.clampScale",
-                            "smcir.invalidateEveryFrame", "smcir.independentRadiance"})
+                            "smcir.invalidateEveryFrame", "smcir.independentRadiance", "smcir.rankRadiance",
+                            "smcir.knnCountsSelf", "smcir.knnRank"})
         CHECK(values.count(key) == 1);
-    CHECK(values.size() == 21);
+    CHECK(values.size() == 24);
     CHECK(defaults.candidateDensityK == 1);   // 3.2.4: "We set k = 1" (lines 6 and 8)
     CHECK(defaults.texturedVPLs == false);     // 5: "an untextured version of the scene for the VPL generation"
     CHECK(defaults.clampScale > 0.0f);         // 5.4: always clamped
@@ -367,11 +368,12 @@ TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (
     // All bounces, right after initialization (line 1: candidates resampled to uniform in area, no
     // selection yet): radiance L_all, mean 1/p = 4 pi R^2 (E[1/p] is exact, MATH.md 2) and eq. (5)
     // = rho L_all. A large rendering k keeps the kNN noise small. This pins the normalisation:
-    // 1/I, L (not B = pi L), p integrating to 1.
+    // 1/I, L (not B = pi L), p integrating to 1. Eq. (7) as MATH.md 2 reads it (self excluded).
     SMCIRParams params = smallParams(512, 0);
     params.radiosityBounces = 40;
     params.radiositySamples = 64;
     params.knnRender = 32;
+    params.knnCountsSelf = false;
     {
         SMCIRSampler sampler(scene, rays, params);
         sampler.initialize(scene.cameras[0]);
@@ -385,13 +387,30 @@ TEST_CASE("smcir furnace: radiance = closed forms, mean 1/p = sphere area, eq. (
         CHECK(initial.meanInverseDensity == Approx(area).epsilon(0.03));
         CHECK(initial.worstEq5 < 0.03);
     }
+    // smcir.knnCountsSelf (the default): y is its own first neighbour, r the distance to the
+    // (k-1)-th other, so on a fresh (Poisson) set E[1/p] = (k-1)/k of the area: 0.75 at k = 4.
+    {
+        SMCIRParams self = params;
+        self.knnCountsSelf = true;
+        self.knnRender = 4;
+        SMCIRSampler sampler(scene, rays, self);
+        sampler.initialize(scene.cameras[0]);
+        const double ratio = summarizeFurnace(scene, rays, furnace, sampler.vpls()).meanInverseDensity / area;
+        MEASURED("smcir furnace, initialized (I = 512, k = 4, y counted): mean 1/p / area " << ratio << " (closed form 0.75)");
+        // The k = 4 estimate's noise over 512 VPLs is about 1/sqrt(4 * 512) = 2%; 0.04 is 2x it, and
+        // far from the self-excluded 1.
+        CHECK(std::abs(ratio - 0.75) < 0.04);
+    }
 
     // After 20 frames the set is blue noise (candidates are ranked with k = 1, 3.2.4), and kNN on a
     // repulsive set over-estimates 1/p: the paper's estimator is biased, though consistent (3.3),
     // and the bias falls as k grows. It also keeps the VPLs whose frozen radiance estimate came out
     // high (ranking by a noisy L). Measured: 1/p +14 % at k = 4 (eq. 8 at I = 512), +3 % at k = 32.
+    // The paper's selection (ranked by the rendered values, self excluded); core/vpl/smcir_selection.h
+    // and tests/cpu/test_smcir_selection.cpp measure the default one.
     auto warmed = [&](int knnRender) {
         SMCIRParams p = params;
+        p.rankRadiance = kRankByRenderedRadiance;
         p.warmupIterations = 20;
         p.radiositySamples = 16;
         p.knnRender = knnRender;
@@ -534,11 +553,15 @@ TEST_CASE("smcir stable slots: at most M_max slots change per frame, others keep
         for (const VPL& v : set.slots)
             if (v.valid) positions.push_back(v.position);
         const std::size_t n = positions.size();
-        const std::size_t k = static_cast<std::size_t>(computeRenderingK(params.vplCount));
+        // k of eq. (8); r to the k-th other VPL, or with knnCountsSelf (y its own first neighbour, k >= 2)
+        // to the (k-1)-th other: the index holds y itself at distance 0.
+        std::size_t k = static_cast<std::size_t>(computeRenderingK(params.vplCount));
+        std::size_t neighbour = k + 1;
+        if (params.knnCountsSelf) neighbour = k = std::max<std::size_t>(k, 2);
         const KNNIndex index(positions);
         int densityMismatches = 0;
         for (const VPL& v : set.slots)
-            if (v.valid && v.density != estimateKNNDensity(k, n, index.kthDistanceSquared(v.position, k + 1)))
+            if (v.valid && v.density != estimateKNNDensity(k, n, index.kthDistanceSquared(v.position, neighbour)))
                 ++densityMismatches;
         CHECK(densityMismatches == 0);
     }
@@ -632,7 +655,10 @@ TEST_CASE("smcir caches radiance keyed by the lights, and a light change re-esti
     sampler.step(FrameSnapshot::of(scene, scene.cameras[0], 16.0f / 9.0f));
     const SMCIRStageTimes fresh = sampler.lastTimes();
     changed = std::set<std::uint32_t>(sampler.vpls().changed.begin(), sampler.vpls().changed.end());
-    CHECK(fresh.radianceEstimates == fresh.candidates + 256); // survivors (new lights) and new VPLs
+    // Survivors (new lights) and new VPLs, and the survivors' ranking values (smcir.rankRadiance =
+    // candidate: re-estimated with their candidate seeds; the new VPLs' are this frame's candidates').
+    const int survivorsNow = 256 - static_cast<int>(changed.size());
+    CHECK(fresh.radianceEstimates == fresh.candidates + 256 + survivorsNow);
     int notDoubled = 0;
     for (std::uint32_t slot = 0; slot < 256; ++slot) {
         if (changed.count(slot)) continue;
@@ -648,7 +674,8 @@ TEST_CASE("smcir caches radiance keyed by the lights, and a light change re-esti
     FrameSnapshot halved = FrameSnapshot::of(scene, scene.cameras[0], 16.0f / 9.0f);
     halved.lights[0].intensity *= 0.5f;
     sampler.step(halved);
-    CHECK(sampler.lastTimes().radianceEstimates == sampler.lastTimes().candidates + 256);
+    CHECK(sampler.lastTimes().radianceEstimates ==
+          sampler.lastTimes().candidates + 256 + 256 - static_cast<int>(sampler.vpls().changed.size()));
 }
 
 TEST_CASE("smcir is deterministic: same seed and cameras give the same set at 1 and 2 threads", "[smcir]")
