@@ -37,7 +37,8 @@
 //  pixel gathers every VPL: Fig. 8's "All VPLs - shadow maps").
 //  Shadow test: the shaded point is lifted along its normal by normalOffset map texels at its
 //  distance from the VPL and compared with the stored distance scaled by 1 + depthBias; both are
-//  ours (the paper gives no bias), set against smcir-rt's ray-traced visibility on Cornell (README).
+//  ours (the paper adjusts its depth bias with the map resolution, Fig. 9 / lines 1237-1238, but
+//  gives no value), set against smcir-rt's ray-traced visibility on Cornell (README).
 //
 // References
 // ----------
