@@ -94,6 +94,18 @@ int runSMCIRSelection(const std::vector<std::string>& args)
     }
     if (variants.empty()) variants.push_back(Variant{"defaults", {}});
 
+    // Every option set is checked before anything runs or prints: a bad key is one error line.
+    std::vector<SMCIRParams> variantParams;
+    for (const Variant& variant : variants) {
+        SMCIRParams params;
+        Settings settings = common;
+        settings.insert(settings.end(), variant.settings.begin(), variant.settings.end());
+        ParamSetter setter(settings);
+        params.visitParams(setter);
+        setter.finish();
+        variantParams.push_back(params);
+    }
+
     const RayScene rays(scene);
     const FrameSnapshot snapshot = FrameSnapshot::of(scene, scene.cameras[0], aspect);
     const ProgressSink progress = terminalProgressBar();
@@ -102,13 +114,9 @@ int runSMCIRSelection(const std::vector<std::string>& args)
     std::printf("| option set | frames | bias | radiance part | density part | density part, 4k | area |\n"
                 "|---|---|---|---|---|---|---|\n");
     std::vector<std::string> driftLines;
-    for (const Variant& variant : variants) {
-        SMCIRParams params;
-        Settings settings = common;
-        settings.insert(settings.end(), variant.settings.begin(), variant.settings.end());
-        ParamSetter setter(settings);
-        params.visitParams(setter);
-        setter.finish(); // an unknown or out-of-range key is one error line
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+        const Variant& variant = variants[v];
+        SMCIRParams params = variantParams[v];
         std::vector<SMCIRSelectionRun> runs;
         for (int seed = 1; seed <= seeds; ++seed) {
             params.seed = static_cast<std::uint32_t>(seed);

@@ -190,6 +190,13 @@ error "parameter vsgl.count = 0 is outside" bench --scene cornell "${S[@]}" --te
 error "/proc/b.json: cannot write in /proc" bench --scene cornell "${S[@]}" --frames 1 --json /proc/b.json
 error "$I/afile/b.json: $I/afile is not a directory" bench --scene cornell "${S[@]}" --frames 1 --json $I/afile/b.json
 
+# ---- smcir-selection ----
+error "--frames 5 is outside" smcir-selection --scene cornell --frames 5
+error "--checkpoints must be a comma-separated list of integers (got \"10,x\")" smcir-selection --scene cornell --frames 10 --checkpoints 10,x
+error "--checkpoints must lie in [0, --frames] (got 20)" smcir-selection --scene cornell --frames 10 --checkpoints 20
+error "unknown parameter \"smcir.rankRadiancee\"" smcir-selection --scene cornell --frames 10 --variant "smcir.rankRadiancee=candidate"
+error "parameter smcir.rankRadiance: \"best\" is not one of" smcir-selection --scene cornell --frames 10 --variant "smcir.rankRadiance=best"
+
 # ---- accepted with a warning: the decisions (README "Bad input") ----
 warning "$I/no-lights.gltf: the scene has no lights" a.png render --scene $I/no-lights.gltf "${S[@]}" --out a.png
 warning "$I/degenerate.gltf: dropped 2 degenerate (zero-area) triangles in 1 primitive, first in mesh 0 (floor) primitive 0" a.png render --scene $I/degenerate.gltf "${S[@]}" --out a.png
@@ -208,7 +215,7 @@ if [ "$(cd in && find . | sort | md5sum)" != "$inputs_before" ]; then
 fi
 
 # --help works on every subcommand and exits 0.
-for cmd in render view scenes reference compare bench; do
+for cmd in render view scenes reference compare bench conform smcir-selection; do
   if ! "$vplgi" "$cmd" --help | grep -q "usage: vplgi $cmd"; then
     echo "FAIL: vplgi $cmd --help"; failures=$((failures + 1))
   fi
