@@ -17,9 +17,10 @@ struct WorldTriangle {
 
 } // namespace
 
-SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t seed)
+SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t seed, int blockSize)
 {
     require(count >= 0, "surface points: count must be >= 0 (got " + std::to_string(count) + ")");
+    require(blockSize >= 0, "surface points: block size must be >= 0 (got " + std::to_string(blockSize) + ")");
     SurfacePoints points;
     std::vector<WorldTriangle> triangles;
     std::vector<double> cumulativeArea; // inclusive prefix sums, in double: 10^6 triangles sum exactly enough
@@ -43,15 +44,33 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
     points.positions.reserve(static_cast<std::size_t>(count));
     points.normals.reserve(static_cast<std::size_t>(count));
     Pcg32 rng(mix64(seed), 0x15u);
+    double blockOffset = 0.0;
     for (int i = 0; i < count; ++i) {
-        // Triangle by area: the first whose inclusive prefix sum exceeds u * total.
-        const double target = static_cast<double>(rng.uniform()) * points.totalArea;
+        if (blockSize > 0 && i % blockSize == 0) blockOffset = static_cast<double>(rng.uniform());
+        // Triangle by area: the first whose inclusive prefix sum exceeds u * total; in blocks, u is
+        // stratified: (k + xi) / blockSize for the block's k-th point.
+        const double u = blockSize > 0
+                             ? (static_cast<double>(i % blockSize) + static_cast<double>(rng.uniform())) / blockSize
+                             : static_cast<double>(rng.uniform());
+        const double target = u * points.totalArea;
         const auto it = std::upper_bound(cumulativeArea.begin(), cumulativeArea.end(), target);
         const std::size_t index = std::min(static_cast<std::size_t>(it - cumulativeArea.begin()), triangles.size() - 1);
         const WorldTriangle& tri = triangles[index];
-        // Uniform barycentrics (square-root warp; Turk 1990, pbrt's SampleUniformTriangle).
-        const float su = std::sqrt(rng.uniform());
-        const float u2 = rng.uniform();
+        // Uniform barycentrics (square-root warp; Turk 1990, pbrt's SampleUniformTriangle). In blocks
+        // the first coordinate is where u fell inside the triangle's share (the triangle's points
+        // are stratified along it) and the second the golden-ratio sequence of the stratum index k
+        // with the block's random offset: the points of a triangle form a jittered Fibonacci
+        // lattice (k / m, frac(k / phi)), whose gaps are all about the same size.
+        const double lowerArea = index > 0 ? cumulativeArea[index - 1] : 0.0;
+        const double inside = blockSize > 0 ? std::clamp((target - lowerArea) / (cumulativeArea[index] - lowerArea), 0.0, 1.0)
+                                            : static_cast<double>(rng.uniform());
+        const float su = std::sqrt(static_cast<float>(inside));
+        double golden = 0.0;
+        if (blockSize > 0) {
+            const double g = static_cast<double>(i % blockSize) * 0.6180339887498949 + blockOffset;
+            golden = g - std::floor(g);
+        }
+        const float u2 = blockSize > 0 ? static_cast<float>(golden) : rng.uniform();
         const float b1 = su * (1.0f - u2);
         const float b2 = su * u2;
         points.positions.push_back((1.0f - b1 - b2) * tri.p0 + b1 * tri.p1 + b2 * tri.p2);

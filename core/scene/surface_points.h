@@ -24,7 +24,11 @@ struct SurfacePoints {
 };
 
 // `count` points (>= 0) uniform over the surface area of `scene` (throws Error when count > 0 and
-// the scene has no triangle of positive area).
-SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t seed);
+// the scene has no triangle of positive area). blockSize 0: i.i.d. points. blockSize n > 0 (ours,
+// for imperfect shadow maps): each block of n consecutive points (points i with the same i / n) is a
+// stratified sample, the k-th drawn from the k-th n-th of the area in triangle order, so every
+// triangle gets its share of a block within one point, and any n consecutive points still cover the
+// area once (a run that starts inside a block ends at the same place of the next).
+SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t seed, int blockSize = 0);
 
 } // namespace vplgi

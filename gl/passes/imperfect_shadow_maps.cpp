@@ -1,9 +1,12 @@
 #include "imperfect_shadow_maps.h"
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/packing.hpp>
 
 #include "../api/debug.h"
 #include "core/scene/surface_points.h"
@@ -11,11 +14,19 @@
 #include "core/util/params.h"
 #include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
+#include "glsl/shared/normals.h"
 #include "glsl/shared/vpl.h"
 
 namespace vplgi {
 
 namespace {
+
+// A point of passes/ism_splat.comp's buffer (std430 struct of a vec3 and a uint: 16 bytes).
+struct ISMPointRecord {
+    glm::vec3 position;          // world [m]
+    std::uint32_t normalSnorm2x16; // octEncode'd unit geometric normal, packSnorm2x16'd
+};
+static_assert(sizeof(ISMPointRecord) == 16, "ISMPointRecord must match std430");
 
 // Points one splat invocation handles (passes/ism_splat.comp ISM_POINTS_PER_INVOCATION).
 constexpr int kSplatPointsPerInvocation = 8;
@@ -42,6 +53,17 @@ void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
     v.field(prefix + "DepthBias", depthBias, 0.0f, 1.0f, "lookup: lit while distance <= stored * (1 + bias) (ours)");
     v.field(prefix + "NormalOffset", normalOffset, 0.0f, 64.0f,
             "lookup: lift the shaded point along its normal by this many map texels (ours)");
+    v.field(prefix + "SplatScale", splatScale, 0.0f, 8.0f,
+            "footprint splats: each point covers the image of a disk of its tangent plane, radius this x sqrt(area / "
+            "(pi x points per map)); 0 = one-texel points (Ritschel et al.) (ours)");
+    v.field(prefix + "SplatMaxExtent", splatMaxExtent, 1.0f, 64.0f,
+            "footprint splats: each disk's bounding box is cut to this half-size [texels] (ours)");
+    v.field(prefix + "OwnRadius", ownRadius, 0.0f, 16.0f,
+            "points nearer to a light with extent (a VSGL) than this x its radius r_i are not splatted into its map: "
+            "its own footprint does not shadow it; 0 = every point (ours)");
+    v.field(prefix + "Stratified", stratified,
+            "each light's run of points per map is a stratified sample of the scene's area (every triangle gets its "
+            "share within one point); false: i.i.d. points (ours)");
     v.field(prefix + "Seed", seed, "random stream of the surface points");
 }
 
@@ -61,6 +83,9 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
                 " outside [1, points = " + std::to_string(params.points) + "]");
     require(params.pullPushDepthRange >= 0.0f && params.depthBias >= 0.0f && params.normalOffset >= 0.0f,
             name + "pull-push depth range, depth bias and normal offset must be >= 0");
+    require(params.splatScale >= 0.0f && params.splatScale <= 8.0f && params.splatMaxExtent >= 1.0f &&
+                params.splatMaxExtent <= 64.0f,
+            name + "splat scale must lie in [0, 8] and splat max extent in [1, 64] texels");
     require(maxLights >= 1, name + "maxLights must be >= 1 (got " + std::to_string(maxLights) + ")");
     // The splat computes light * pointsPerMap in 32-bit unsigned arithmetic.
     require(static_cast<std::uint64_t>(maxLights) * static_cast<std::uint64_t>(params.pointsPerMap) < (1ull << 32),
@@ -87,17 +112,21 @@ void ImperfectShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
 
 void ImperfectShadowMaps::setScene(const Scene& scene)
 {
-    const SurfacePoints sample = sampleSurfacePoints(scene, mParams.points, mParams.seed);
-    std::vector<glm::vec4> packed(sample.positions.size());
+    const SurfacePoints sample = sampleSurfacePoints(scene, mParams.points, mParams.seed, mParams.stratified ? mParams.pointsPerMap : 0);
+    std::vector<ISMPointRecord> packed(sample.positions.size());
     for (std::size_t i = 0; i < packed.size(); ++i)
-        packed[i] = glm::vec4(sample.positions[i], 1.0f);
-    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(glm::vec4)),
+        packed[i] = ISMPointRecord{sample.positions[i], glm::packSnorm2x16(shared::octEncode(sample.normals[i]))};
+    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(ISMPointRecord)),
                          packed.data(), false);
     mPointCount = static_cast<int>(packed.size());
+    // Each light's run of pointsPerMap points is a uniform sample of the area: one point per
+    // A / pointsPerMap square metres, the disk of that area has radius sqrt(A / (pi pointsPerMap)).
+    mSplatRadius = mParams.splatScale *
+                   static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mParams.pointsPerMap)));
 }
 
 void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, int validVec4,
-                                 gl::PassTimer* timer)
+                                 int radius2Vec4, gl::PassTimer* timer)
 {
     require(mPointCount > 0, "imperfect shadow maps: update() before setScene()");
     require(count >= 0 && count <= mMaxLights,
@@ -105,6 +134,8 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     require(strideVec4 >= 2, "imperfect shadow maps: light stride " + std::to_string(strideVec4) + " < 2 vec4s");
     require(validVec4 >= 0 && validVec4 < strideVec4,
             "imperfect shadow maps: the valid flag's vec4 " + std::to_string(validVec4) + " is outside the record");
+    require(radius2Vec4 >= -1 && radius2Vec4 < strideVec4,
+            "imperfect shadow maps: the radius's vec4 " + std::to_string(radius2Vec4) + " is outside the record");
     require(static_cast<std::int64_t>(count) * strideVec4 * 16 <= lights.size(),
             "imperfect shadow maps: " + std::to_string(count) + " lights x " + std::to_string(strideVec4) +
                 " vec4s exceed the light buffer (" + std::to_string(lights.size()) + " bytes)");
@@ -124,6 +155,10 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uPointCount", mPointCount);
     splat.set("uMapSize", mParams.mapSize);
     splat.set("uTilesPerRow", mLayout.tilesPerRow);
+    splat.set("uSplatRadius", mSplatRadius);
+    splat.set("uSplatMaxExtent", mParams.splatMaxExtent);
+    splat.set("uRadius2Vec4", radius2Vec4);
+    splat.set("uOwnRadius", mParams.ownRadius);
     // Pull reads the splat next; without pull-push the shading pass (or a test's readback) does.
     const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;
     mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),

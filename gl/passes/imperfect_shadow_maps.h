@@ -6,10 +6,12 @@
 // -----
 // Rendering the scene once per light (SMCIR's hemisphere cubes, gl/passes/vpl_shadow_maps.h) costs
 // triangles x lights. An ISM instead splats a small, different random subset of surface points into
-// each light's paraboloid map as one-texel points, nearest distance wins: each map alone is full of
-// holes and misses thin features, but the errors of different lights are independent, and the
-// shading sums over many lights average them. Pull-push then fills the holes from the coarser levels
-// of a pyramid. The maps are SMCIR's paraboloid distance maps exactly (glsl/shared/vpl.h: frame
+// each light's paraboloid map, nearest distance wins: each map alone is full of holes and misses thin
+// features, but the errors of different lights are independent, and the shading sums over many
+// lights average them. Pull-push then fills the holes from the coarser levels of a pyramid. Ritschel
+// et al. splat one-texel points; ours splats each point as the disk of its tangent plane it stands
+// for (footprint splats, glsl/shared/ism.h; `splatScale`, 0 = one-texel points), because a hole in a
+// near wall is not empty but shows the farther surfaces behind it, which pull-push cannot repair. The maps are SMCIR's paraboloid distance maps exactly (glsl/shared/vpl.h: frame
 // about the light's normal, texel, r32f distance [m], kVPLNoOccluder = nothing), so a shading pass
 // looks them up with the same arithmetic (glsl/lib/ism.glsl: ismVisibility).
 //
@@ -29,35 +31,44 @@
 //  Lights: an SSBO of records of `stride` vec4s whose first two hold the xyz position and the xyz
 //  unit normal; the w of vec4 `validVec4` is 0 for an empty record, which gets an empty map
 //  (visible from everywhere): SMCIR's GpuVPL (3 vec4s, valid in the position's w: validVec4 0) and
-//  VSGL's VSGLight (6 vec4s, r^2 in the position's w, valid in the normal's: validVec4 1).
-//  Points: P = params.points (default 8192 x 64 = 524288, 8 MiB as vec4). Light i takes the run of
+//  VSGL's VSGLight (6 vec4s, r^2 in the position's w, valid in the normal's: validVec4 1,
+//  radius2Vec4 0). A light with a radius r_i (a VSGL stands for a footprint of RSM texels around its
+//  mean position) does not get the points within ownRadius x r_i: they are the surface it stands
+//  for, and where the footprint spans a convex edge its mean lies inside the object, whose walls
+//  would enclose it (ours; VSGL's cornell bias -15.9% with them, -10.1% without, 4 seeds:
+//  docs/vsgl.md). Point lights (vpl-brsm, r_i = 0) keep every point.
+//  Points: P = params.points (default 8192 x 64 = 524288, 8 MiB: a vec3 and a packed normal each). Light i takes the run of
 //  pointsPerMap points starting at i * pointsPerMap mod P (wrapping), so P / pointsPerMap disjoint
 //  subsets; with VSGL's N = 1024 each serves 16 lights, which sit at other places and see the same
 //  points through other maps, so their holes still differ. Consecutive points are i.i.d. uniform
 //  over the area, so every run is a uniform sample. More subsets cost memory and upload only.
 //  Splat: a compute pass with imageAtomicMin on the distance's float bits (positive floats order
-//  like their bits) through an r32ui binding of the r32f maps (compatible by size). This is a
-//  one-texel point with a depth test, order-independent, and it lands in the texel the lookup reads
-//  (both go through vplParaboloidTexel); rasterised GL_POINTS would need the atlas squeeze and clip
-//  planes of the shadow atlas for every point. Points within kISMHorizonCosine of the light's
-//  tangent plane (its own surface) are skipped.
+//  like their bits) through an r32ui binding of the r32f maps (compatible by size): a depth test,
+//  order-independent. Each point writes its own distance into the texel of its direction (the texel
+//  the lookup reads: both go through vplParaboloidTexel) and, with splatScale > 0, the distance to its
+//  tangent plane into every texel whose centre lies in the image of its disk of radius splatScale x
+//  sqrt(A / (pi pointsPerMap)) (A: the scene's area; an ellipse, its bounding box cut to
+//  splatMaxExtent texels), the arithmetic of glsl/shared/ism.h shared with the test's CPU twin.
+//  Rasterised GL_POINTS would need the atlas squeeze and clip planes of the shadow atlas for every
+//  point. Points within kISMHorizonCosine of the light's tangent plane (its own surface) are skipped.
+//  The points carry their geometric normal (octahedral, snorm 2 x 16 bits beside the position).
 //  Pull-push: glsl/shared/ism.h (the arithmetic, shared with the test's CPU twin). Levels 1 ..
 //  pullPushLevels of the atlas texture hold the pyramid: with a power-of-two map size and
 //  tilesPerRow, level l of the atlas is every tile's level l in place. A hole larger than about
 //  2^pullPushLevels texels stays empty (log2(mapSize) fills every hole of a map with any point).
-//  Defaults measured in the Cornell box against Embree (tests/gl/test_imperfect_shadow_maps.cpp,
-//  test case "ISM: visibility in the Cornell box against Embree rays", which prints the numbers
-//  below for 0, 2, 4 and 6 pull-push levels: ./build/tests/vplgi_tests_gl "ISM: visibility in the
-//  Cornell box*"; 64 lights on the surfaces x 552 receivers; "mean" = the mean over receivers of
-//  the visible fraction of their lights, ISM minus Embree): pull-push cuts the light leak of the
-//  holes (mean +0.044 without, +0.008 with 4 levels) for a few more false shadows; 2, 4 and 6
-//  levels differ little there, and 4 leaves directions with no surface within about 16 texels
-//  (sky) empty. Depth range and depth bias were chosen with the same comparison at values the test
-//  does not run (no command prints them, so no figures here): ignoring texels beyond 1.1x the
-//  nearest shadowed too much (holes on surfaces seen at grazing angles took too near a
-//  distance), a plain average leaked; 4x (3) came closest to 0 in the mean, and still gives a hole
-//  on a depth edge the foreground's distance. Depth bias 0.1 rather than SMCIR's 0.02, which
-//  shadowed too much (hole-filled distances are averages over a few texels); 0.2 leaks.
+//  Defaults, measured against Embree per light-receiver pair (tests/gl/test_imperfect_shadow_maps.cpp,
+//  "ISM: visibility in the Cornell box*" and "ISM: the sealed room's*", which print every variant;
+//  the table is in docs/vsgl.md, "Imperfect shadow maps"): footprint splats at splatScale 1.25,
+//  stratified points, no pull-push. In the Cornell box 6.8% of the pairs disagree (one-texel points
+//  with 4 pull-push levels, the previous default: 13.9%; exact 64^2 maps: 3.9%); in the sealed room
+//  1.8% (17.6%), 1.4% lit though occluded (17.3%). Pull-push, once the splats close the holes, only
+//  adds false shadows (Cornell: 9.6% of the pairs disagree with 4 levels): it fills the directions
+//  with no surface (the box's open front) with the foreground's distance. Larger disks leak less
+//  and shadow more at silhouettes (they overhang a surface's edge by up to their radius): scale 2
+//  gives 1.0% false lit in the sealed room but -3.3% of visible light in the Cornell box; scale
+//  1.25 is where the image-level bias over the built-in scenes was smallest (docs/vsgl.md). The
+//  depth bias stays 0.1: 0.02 halves what still leaks in the sealed room (at the wall joints, where a
+//  receiver lies within 10% of its distance behind the wall) but adds false shadows in the box.
 //  Cost: update() of 1024 lights x 8192 points at 64^2 took 175 ms on llvmpipe on an idle 2-core
 //  machine (splat 106, push 53, pull 14, clear 1 ms; 0.2-0.5 s while other builds shared it). The
 //  paper reports 8-12 ms for its AISMs on a 2011 GPU.
@@ -93,14 +104,19 @@ struct ISMParams {
     int points = 8192 * 64;          // P: surface points of the scene, shared by all maps [1, 2^24]
     int pointsPerMap = 8192;         // points splatted per light's map (VSGL section 4: 8192) [1, P]
     int mapSize = 64;                // paraboloid map resolution [texels], a power of two (section 4: 64) [4, 1024]
-    int pullPushLevels = 4;          // pyramid levels above the map for hole filling; 0 = none [0, log2 mapSize]
+    int pullPushLevels = 0;          // pyramid levels above the map for hole filling; 0 = none [0, log2 mapSize]
     float pullPushDepthRange = 3.0f; // pull-push ignores texels farther than (1 + this) x the nearest one
     float depthBias = 0.1f;          // lookup: lit while distance <= stored (1 + depthBias) (SMCIR's test; Details)
     float normalOffset = 1.0f;       // lookup: lift along the normal [map texels at the distance] (as SMCIR's)
+    float splatScale = 1.25f;        // footprint splats: disk radius / sqrt(A / (pi pointsPerMap)); 0 = one texel (ours)
+    float splatMaxExtent = 8.0f;     // a disk's bounding box is cut to this half-size [texels] (ours)
+    bool stratified = true;          // each run of pointsPerMap points a stratified sample of the area (ours)
+    float ownRadius = 1.0f;          // lights with extent: points within this x their radius are not splatted (ours)
     std::uint32_t seed = 1;          // the point set's random stream
 
     // Keys prefix + "Points", "PointsPerMap", "MapSize", "PullPushLevels", "PullPushDepthRange",
-    // "DepthBias", "NormalOffset", "Seed" (prefix "vsgl.ism" gives "vsgl.ismPoints").
+    // "DepthBias", "NormalOffset", "SplatScale", "SplatMaxExtent", "Stratified", "OwnRadius",
+    // "Seed" (prefix "vsgl.ism" gives "vsgl.ismPoints").
     void visitParams(ParamVisitor& visitor, const std::string& prefix);
 };
 
@@ -115,7 +131,10 @@ public:
     void setScene(const Scene& scene);
     // Rebuilds the maps of lights 0 .. count-1 (count <= maxLights) from `lights`, records of
     // `strideVec4` vec4s (>= 2) each (see Details). With a timer, each kernel is a scope.
-    void update(const gl::Buffer& lights, int count, int strideVec4, int validVec4, gl::PassTimer* timer = nullptr);
+    // radius2Vec4: the record's vec4 whose w holds the light's squared radius (VSGL's r_i^2: points
+    // within ownRadius x r_i are its own footprint and are not splatted), -1 for point lights.
+    void update(const gl::Buffer& lights, int count, int strideVec4, int validVec4, int radius2Vec4 = -1,
+                gl::PassTimer* timer = nullptr);
     // Pull-push alone on the maps of lights 0 .. count-1 (update() runs it after the splat; tests
     // run it on maps they wrote).
     void fillHoles(int count, gl::PassTimer* timer = nullptr);
@@ -125,7 +144,8 @@ public:
     const ISMParams& params() const { return mParams; }
     const ShadowAtlasLayout& layout() const { return mLayout; }
     const gl::Texture& maps() const { return mMaps; } // r32f 2D array, pullPushLevels + 1 levels
-    const gl::Buffer& points() const { return mPoints; }
+    const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal
+    float splatRadius() const { return mSplatRadius; }   // after setScene
     int maxLights() const { return mMaxLights; }
 
 private:
@@ -138,6 +158,7 @@ private:
     gl::Sampler mSampler;
     gl::Buffer mPoints;
     int mPointCount = 0;
+    float mSplatRadius = 0.0f; // world radius of a point's disk [m] (splatScale sqrt(A / (pi pointsPerMap)))
     ComputePass mSplat;
     ComputePass mPull;
     ComputePass mPush;

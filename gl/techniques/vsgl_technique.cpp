@@ -210,8 +210,8 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
             mISM = std::make_unique<ImperfectShadowMaps>(*mShaders, mParams.ism, mCount);
             mISM->setScene(*mScene);
         }
-        // VSGLight: r^2 in the position's w, the valid flag in the normal's (vec4 1).
-        mISM->update(mLights, mCount, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1);
+        // VSGLight: r^2 in the position's w (vec4 0), the valid flag in the normal's (vec4 1).
+        mISM->update(mLights, mCount, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1, 0);
     }
     {
         gl::PassTimer::Scope scope(frame.timer, "radiance estimation");

@@ -1,6 +1,8 @@
 #version 450 core
 // Imperfect shadow maps (gl/passes/imperfect_shadow_maps.h): splats each light's run of scene
-// points into its paraboloid map as one-texel points, nearest distance wins. Invocation (j, light):
+// points into its paraboloid map, nearest distance wins: the texel of the point's direction, and with
+// uSplatRadius > 0 every texel whose centre lies in the image of the point's disk (the footprint
+// splat of glsl/shared/ism.h, ours). Invocation (j, light):
 // points k = j * ISM_POINTS_PER_INVOCATION ... of the light's run, point (start + k) mod P of the point
 // set, start = light * uPointsPerMap mod P (several points per invocation share the light's frame:
 // 25% faster on llvmpipe than one each). The distance is
@@ -8,6 +10,7 @@
 // result does not depend on the order the invocations run in.
 #include "../shared/bindings.h"
 #include "../shared/ism.h"
+#include "../shared/normals.h"
 
 #ifndef ISM_POINTS_PER_INVOCATION
 #define ISM_POINTS_PER_INVOCATION 8
@@ -16,8 +19,13 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(binding = kImageISMMaps, r32ui) uniform uimage2DArray uMaps;
 
+struct ISMPoint {
+    vec3 position;       // world [m]
+    uint normalSnorm2x16; // unit geometric normal, octEncode'd and packSnorm2x16'd
+};
+
 layout(std430, binding = kBindingISMPoints) readonly buffer Points {
-    vec4 points[]; // xyz world position [m], w unused
+    ISMPoint points[];
 };
 
 layout(std430, binding = kBindingISMLights) readonly buffer Lights {
@@ -31,6 +39,10 @@ uniform int uPointsPerMap;
 uniform int uPointCount;
 uniform int uMapSize;
 uniform int uTilesPerRow;
+uniform float uSplatRadius;    // world radius of each point's disk [m]; 0: one-texel points
+uniform float uSplatMaxExtent;
+uniform int uRadius2Vec4;      // the record's vec4 whose w is the light's radius^2 [m^2]; -1: point lights
+uniform float uOwnRadius;      // points within this x the light's radius are not splatted // the disk's bounding box is cut to this half-size [texels]
 
 void main()
 {
@@ -39,13 +51,32 @@ void main()
     if (first >= uPointsPerMap || light >= uCount) return;
     if (lightRecords[light * uStride + uValidVec4].w == 0.0) return;
     vec4 positionValid = lightRecords[light * uStride];
+    // A light with extent (a VSGL) is not shadowed by its own footprint, the surface it stands for.
+    float ownRadius = uRadius2Vec4 >= 0 ? uOwnRadius * sqrt(max(lightRecords[light * uStride + uRadius2Vec4].w, 0.0)) : 0.0;
     mat3 frame = lightViewBasis(lightRecords[light * uStride + 1].xyz);
     // The C++ side keeps lights * pointsPerMap below 2^32.
     uint start = (uint(light) * uint(uPointsPerMap)) % uint(uPointCount);
     int last = min(first + ISM_POINTS_PER_INVOCATION, uPointsPerMap);
+    ivec2 tileOrigin = shadowAtlasTileFromIndex(light, uTilesPerRow).xy * uMapSize;
     for (int k = first; k < last; ++k) {
-        vec3 point = points[(start + uint(k)) % uint(uPointCount)].xyz;
+        ISMPoint record = points[(start + uint(k)) % uint(uPointCount)];
+        vec3 point = record.position;
         ivec3 texel = ismSplatTexel(light, positionValid.xyz, frame, point, uMapSize, uTilesPerRow);
-        if (texel.x >= 0) imageAtomicMin(uMaps, texel, floatBitsToUint(length(point - positionValid.xyz)));
+        if (texel.x < 0) continue;
+        if (length(point - positionValid.xyz) < ownRadius) continue;
+        imageAtomicMin(uMaps, texel, floatBitsToUint(length(point - positionValid.xyz)));
+        if (!(uSplatRadius > 0.0)) continue;
+        vec3 toPoint = transpose(frame) * (point - positionValid.xyz);
+        vec3 normal = transpose(frame) * octDecode(unpackSnorm2x16(record.normalSnorm2x16));
+        vec2 centre = ismMapPosition(toPoint / length(toPoint), uMapSize);
+        mat2 ellipse = ismSplatEllipse(toPoint, normal, uSplatRadius, uMapSize);
+        vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);
+        ivec2 lo = ismSplatFirstTexel(centre, extent), hi = ismSplatLastTexel(centre, extent, uMapSize);
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x) {
+                float distance = ismSplatDistance(toPoint, normal, uSplatRadius, centre, ellipse, ivec2(x, y), uMapSize);
+                if (ismValid(distance))
+                    imageAtomicMin(uMaps, ivec3(tileOrigin + ivec2(x, y), texel.z), floatBitsToUint(distance));
+            }
     }
 }

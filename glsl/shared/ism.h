@@ -76,6 +76,84 @@ VPLGI_FUNC ivec3 ismLookupTexel(int light, vec3 lightPosition, vec3 lightNormal,
     return ismMapTexel(light, directionLight, mapSize, tilesPerRow);
 }
 
+// Footprint splats (ours, not in Ritschel et al. 2008 nor in VSGL, which splat one-texel points).
+// A light's run of n points is a uniform sample of the scene's area A, so each point stands for the
+// disk of radius r0 = sqrt(A / (pi n)) of its tangent plane; the splat covers the texels whose
+// centres lie in the image of the disk of radius r = splatScale r0 (an ellipse: the paraboloid map is
+// conformal, and the disk is seen at an angle), each with the distance along the texel's direction to
+// the point's tangent plane. One-texel points cover a near surface far more thinly than a far one
+// (a texel sees d^2 times more area at distance d), so a far surface showed through the holes of a
+// near wall, and pull-push, which fills empty texels only, could not close them: a 10 cm wall of
+// the sealed room let about half the light through (docs/vsgl.md, "Imperfect shadow maps"). With
+// disks, the share of a surface left uncovered is that of a Poisson disk process,
+// exp(-splatScale^2), at any distance.
+
+// Continuous texel coordinates (in the tile) of unit direction `directionLight` (light frame):
+// vplParaboloidTexel is their floor.
+VPLGI_FUNC vec2 ismMapPosition(vec3 directionLight, int mapSize)
+{
+    return paraboloidMapFromDirection(directionLight) * float(mapSize);
+}
+
+// How far the map position of `toPoint` (light frame, relative to the light) moves, in texels, when
+// the point moves by the small world displacement `displacement` (light frame).
+VPLGI_FUNC vec2 ismMapDifferential(vec3 toPoint, vec3 displacement, int mapSize)
+{
+    float d = length(toPoint);
+    vec3 u = toPoint / d;
+    vec3 du = (displacement - u * dot(u, displacement)) / d;
+    float inv = 1.0f / (1.0f + u.z);
+    vec2 dst = vec2(du.x, du.y) * inv - vec2(u.x, u.y) * (du.z * inv * inv);
+    return dst * (0.5f * float(mapSize));
+}
+
+// The linear map from the unit disk to texel offsets of the image of the disk of world radius
+// `radius` about `toPoint` in the plane of unit normal `normal` (both in the light frame).
+VPLGI_FUNC mat2 ismSplatEllipse(vec3 toPoint, vec3 normal, float radius, int mapSize)
+{
+    mat3 tangents = lightViewBasis(normal);
+    return mat2(ismMapDifferential(toPoint, radius * tangents[0], mapSize),
+                ismMapDifferential(toPoint, radius * tangents[1], mapSize));
+}
+
+// Half the size of the ellipse's bounding box [texels], each side at most maxExtent.
+VPLGI_FUNC vec2 ismSplatExtent(mat2 ellipse, float maxExtent)
+{
+    vec2 extent = vec2(length(vec2(ellipse[0].x, ellipse[1].x)), length(vec2(ellipse[0].y, ellipse[1].y)));
+    return min(extent, vec2(maxExtent));
+}
+
+// The first (lo) and last (hi) texel of the tile whose centres may lie in the ellipse about `centre`.
+VPLGI_FUNC ivec2 ismSplatFirstTexel(vec2 centre, vec2 extent)
+{
+    return max(ivec2(ceil(centre - extent - vec2(0.5f))), ivec2(0));
+}
+
+VPLGI_FUNC ivec2 ismSplatLastTexel(vec2 centre, vec2 extent, int mapSize)
+{
+    return min(ivec2(floor(centre + extent - vec2(0.5f))), ivec2(mapSize - 1));
+}
+
+// The distance the disk's splat writes into texel `texel` of the tile: kVPLNoOccluder when the
+// texel's centre is outside the ellipse, else the distance along the texel's direction to the disk's
+// plane, kept within [d - radius, d + radius] (d = |toPoint|; the plane is nearly parallel to the
+// direction at the ellipse's ends).
+VPLGI_FUNC float ismSplatDistance(vec3 toPoint, vec3 normal, float radius, vec2 centre, mat2 ellipse, ivec2 texel,
+                                  int mapSize)
+{
+    vec2 offset = vec2(float(texel.x), float(texel.y)) + vec2(0.5f) - centre;
+    // offset = ellipse (a, b); a^2 + b^2 <= 1 without dividing by the determinant (0 edge-on).
+    float det = ellipse[0].x * ellipse[1].y - ellipse[1].x * ellipse[0].y;
+    float a = ellipse[1].y * offset.x - ellipse[1].x * offset.y;
+    float b = ellipse[0].x * offset.y - ellipse[0].y * offset.x;
+    if (!(a * a + b * b <= det * det)) return kVPLNoOccluder;
+    float d = length(toPoint);
+    vec3 w = vplParaboloidTexelDirection(texel, mapSize);
+    float nw = dot(normal, w);
+    float t = abs(nw) > 1.0e-6f ? dot(normal, toPoint) / nw : d;
+    return clamp(t, max(d - radius, 0.0f), d + radius);
+}
+
 // 1 = lit, 0 = shadowed: q's distance against the stored one with SMCIR's relative bias.
 VPLGI_FUNC float ismVisibilityFromStored(float distanceToLight, float stored, float depthBias)
 {

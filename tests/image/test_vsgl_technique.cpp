@@ -447,12 +447,18 @@ TEST_CASE("vsgl on the shared CornellBox.glb (millimetres, a spot light added): 
     MEASURED("CornellBox.glb with a spot light (48x48, N = 1024, RSM 128^2, ISMs; onebounce 2048 spp): mean bias / "
              "relative L1: " << runs[0] << " " << bias[0] << " / " << error[0] << ", " << runs[1] << " " << bias[1]
              << " / " << error[1] << ", " << runs[2] << " " << bias[2] << " / " << error[2]);
-    // Measured: vsgl -2.6% / 0.167, texel -0.2% / 0.226, vpl-brsm +0.4% / 0.111 (the reference's own
-    // noise is part of the L1). vsgl's bounds are about 3x. vpl-brsm's bias bound is 2%: 5x its
-    // measured +0.4% but no looser, as a 5% bound let a lost or doubled part of the light through
-    // (the reference's own mean is good to about 0.3% at 2048 spp); its L1 bound is 2.7x.
+    // Measured: vsgl -5.4% / 0.164, texel -2.0% / 0.216, vpl-brsm -2.9% / 0.105 (the reference's own
+    // noise is part of the L1). vsgl's bounds are about 1.5x (bias) and 3x (L1). vpl-brsm's bias:
+    // the imperfect shadow maps' footprint splats shadow a little too much (a disk overhangs its
+    // surface's edge: -1.6% of the visible fraction per receiver against Embree in the built-in
+    // Cornell box, tests/gl/test_imperfect_shadow_maps.cpp), and here -2.4%, -2.9%, -3.5% at splat
+    // scales 1, 1.25, 1.5; one-texel points with pull-push gave +0.4%, false lit and false shadows
+    // cancelling. So the bound is one-sided: above +2% fails (a doubled part of the light; the
+    // reference's mean is good to about 0.3% at 2048 spp), below -5% fails (a lost part). The
+    // L1 bound is 2.9x.
     CHECK(std::abs(bias[0]) < 0.08);
     CHECK(error[0] < 0.45);
-    CHECK(std::abs(bias[2]) < 0.02);
+    CHECK(bias[2] < 0.02);
+    CHECK(bias[2] > -0.05);
     CHECK(error[2] < 0.3);
 }
