@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "core/scene/builtin_scenes.h"
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "cli.h"
@@ -10,7 +11,9 @@ namespace vplgi {
 
 void addSceneOptions(OptionParser& parser, const std::string& setHelp)
 {
-    parser.value("scene", "S", "built-in scene (canyon, caustics, cornell, furnace, glossy, maze, street), scene file (.json) or .gltf/.glb");
+    std::string names;
+    for (const std::string& name : builtinSceneNames()) names += (names.empty() ? "" : ", ") + name;
+    parser.value("scene", "S", "built-in scene (" + names + "), scene file (.json) or .gltf/.glb");
     parser.value("camera", "NAME", "camera name (default: the scene's first camera)");
     parser.value("set", "KEY=VALUE", setHelp, "", true);
 }
