@@ -63,18 +63,20 @@ void main()
         vec3 point = record.position;
         ivec3 texel = ismSplatTexel(light, positionValid.xyz, frame, point, uMapSize, uTilesPerRow);
         if (texel.x < 0) continue;
-        if (length(point - positionValid.xyz) < ownRadius) continue;
-        imageAtomicMin(uMaps, texel, floatBitsToUint(length(point - positionValid.xyz)));
+        float pointDistance = length(point - positionValid.xyz);
+        if (pointDistance < ownRadius) continue;
+        imageAtomicMin(uMaps, texel, floatBitsToUint(pointDistance));
         if (!(uSplatRadius > 0.0)) continue;
         vec3 toPoint = transpose(frame) * (point - positionValid.xyz);
+        float toPointLength = length(toPoint);
         vec3 normal = transpose(frame) * octDecode(unpackSnorm2x16(record.normalSnorm2x16));
-        vec2 centre = ismMapPosition(toPoint / length(toPoint), uMapSize);
+        vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
         mat2 ellipse = ismSplatEllipse(toPoint, normal, uSplatRadius, uMapSize);
         vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);
         ivec2 lo = ismSplatFirstTexel(centre, extent), hi = ismSplatLastTexel(centre, extent, uMapSize);
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x) {
-                float distance = ismSplatDistance(toPoint, normal, uSplatRadius, centre, ellipse, ivec2(x, y), uMapSize);
+                float distance = ismSplatDistance(toPoint, toPointLength, normal, uSplatRadius, centre, ellipse, ivec2(x, y), uMapSize);
                 if (ismValid(distance))
                     imageAtomicMin(uMaps, ivec3(tileOrigin + ivec2(x, y), texel.z), floatBitsToUint(distance));
             }

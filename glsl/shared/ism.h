@@ -136,10 +136,10 @@ VPLGI_FUNC ivec2 ismSplatLastTexel(vec2 centre, vec2 extent, int mapSize)
 
 // The distance the disk's splat writes into texel `texel` of the tile: kVPLNoOccluder when the
 // texel's centre is outside the ellipse, else the distance along the texel's direction to the disk's
-// plane, kept within [d - radius, d + radius] (d = |toPoint|; the plane is nearly parallel to the
-// direction at the ellipse's ends).
-VPLGI_FUNC float ismSplatDistance(vec3 toPoint, vec3 normal, float radius, vec2 centre, mat2 ellipse, ivec2 texel,
-                                  int mapSize)
+// plane, kept within [d - radius, d + radius] (d = |toPoint|, computed once per point by the caller;
+// the plane is nearly parallel to the direction at the ellipse's ends).
+VPLGI_FUNC float ismSplatDistance(vec3 toPoint, float d, vec3 normal, float radius, vec2 centre, mat2 ellipse,
+                                  ivec2 texel, int mapSize)
 {
     vec2 offset = vec2(float(texel.x), float(texel.y)) + vec2(0.5f) - centre;
     // offset = ellipse (a, b); a^2 + b^2 <= 1 without dividing by the determinant (0 edge-on).
@@ -147,7 +147,6 @@ VPLGI_FUNC float ismSplatDistance(vec3 toPoint, vec3 normal, float radius, vec2 
     float a = ellipse[1].y * offset.x - ellipse[1].x * offset.y;
     float b = ellipse[0].x * offset.y - ellipse[0].y * offset.x;
     if (!(a * a + b * b <= det * det)) return kVPLNoOccluder;
-    float d = length(toPoint);
     vec3 w = vplParaboloidTexelDirection(texel, mapSize);
     float nw = dot(normal, w);
     float t = abs(nw) > 1.0e-6f ? dot(normal, toPoint) / nw : d;

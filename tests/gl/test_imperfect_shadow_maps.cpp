@@ -537,7 +537,7 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
             const glm::ivec2 hi = shared::ismSplatLastTexel(centre, extent, size);
             for (int ty = lo.y; ty <= hi.y; ++ty)
                 for (int tx = lo.x; tx <= hi.x; ++tx) {
-                    const float d = shared::ismSplatDistance(toPoint, n, ism.splatRadius(), centre, ellipse,
+                    const float d = shared::ismSplatDistance(toPoint, glm::length(toPoint), n, ism.splatRadius(), centre, ellipse,
                                                              glm::ivec2(tx, ty), size);
                     float& t = expected[static_cast<std::size_t>(ty * size + tx)];
                     t = std::min(t, d);
