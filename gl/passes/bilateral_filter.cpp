@@ -18,7 +18,13 @@ void BilateralFilterParams::visitParams(ParamVisitor& v, const std::string& pref
             "window edge in 4x4 tiles: 4m x 4m pixels, offsets -2m..2m-1, every interleaving class m^2 times");
     v.field(prefix + "sigmaN", sigmaN, 0.0f, 4096.0f, "normal weight cos+(n_p.n_q)^sigmaN [-]; 0: normals ignored");
     v.field(prefix + "sigmaX", sigmaX, 0.01f, 1e30f,
-            "world-distance sigma in pixel footprints at p [pixels]; >= 1e19: distance ignored");
+            "in-plane distance sigma in pixel footprints at p [pixels]; >= 1e19: ignored");
+    v.field(prefix + "sigmaPlane", sigmaPlane, 0.01f, 1e30f,
+            "sigma of the distance off p's geometric plane, in pixel footprints at p (ours); >= 1e19: ignored");
+    v.field(prefix + "cosFloor", cosFloor, 0.01f, 1.0f,
+            "in-plane distance scaled by max(|n_geometric . view|, cosFloor) (ours: grazing walls); 1: not scaled");
+    v.choice(prefix + "normals", normals, {"interpolated", "shading"},
+             "normal of the normal term: interpolated without the normal map (ours) | shading (normal-mapped)");
 }
 
 BilateralFilterView BilateralFilterView::fromCamera(const Camera& camera)
@@ -51,6 +57,10 @@ void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& inpu
     require(params.windowTiles >= 1 && params.windowTiles <= 8, "bilateral filter: windowTiles must be in [1, 8]");
     require(params.sigmaN >= 0.0f, "bilateral filter: sigmaN must be >= 0");
     require(params.sigmaX > 0.0f, "bilateral filter: sigmaX must be > 0");
+    require(params.sigmaPlane > 0.0f, "bilateral filter: sigmaPlane must be > 0");
+    require(params.cosFloor > 0.0f && params.cosFloor <= 1.0f, "bilateral filter: cosFloor must be in (0, 1]");
+    require(params.normals == BilateralFilterParams::Interpolated || params.normals == BilateralFilterParams::Shading,
+            "bilateral filter: normals must be interpolated or shading");
 
     std::optional<gl::PassTimer::Scope> scope;
     if (timer) scope.emplace(*timer, "bilateral filter");
@@ -58,16 +68,20 @@ void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& inpu
     // 1 / (2 sigmaX^2) in double; below the smallest normal float (sigmaX above about 6.5e18, or
     // infinity) it is set to exactly 0, which the shader reads as "no distance term" (a denormal
     // would be flushed or not depending on the driver).
-    const double sigmaX = params.sigmaX;
-    const double invTwoSigmaX2 = 1.0 / (2.0 * sigmaX * sigmaX);
+    auto invTwoSigma2 = [](double sigma) {
+        const double value = 1.0 / (2.0 * sigma * sigma);
+        return value < std::numeric_limits<float>::min() ? 0.0f : static_cast<float>(value);
+    };
 
     const gl::Program& program = mPass.program();
     glProgramUniform2i(program.id(), program.uniformLocation("uSize"), width, height);
     program.set("uEnabled", params.enabled ? 1 : 0);
     program.set("uWindowTiles", params.windowTiles);
     program.set("uSigmaN", params.sigmaN);
-    program.set("uInvTwoSigmaX2",
-                invTwoSigmaX2 < std::numeric_limits<float>::min() ? 0.0f : static_cast<float>(invTwoSigmaX2));
+    program.set("uInvTwoSigmaX2", invTwoSigma2(params.sigmaX));
+    program.set("uInvTwoSigmaPlane2", invTwoSigma2(params.sigmaPlane));
+    program.set("uCosFloor", params.cosFloor);
+    program.set("uNormalSource", params.normals);
     program.set("uEye", view.eye);
     program.set("uFootprintScale", 2.0f * view.tanHalfFovY / static_cast<float>(height));
 

@@ -12,11 +12,26 @@
 // world-space locations of the pixel samples"; the formula is MATH.md section 7's convention:
 //
 //     I~(p) = sum_{q in W(p)} w(p,q) I(q) / sum_q w(p,q)
-//     w(p,q) = [q is geometry] (cos+(n_p . n_q))^sigmaN exp(-|x_p - x_q|^2 / (2 sigma_x(p)^2))
-//     sigma_x(p) = sigmaX * footprint(p),  footprint(p) = |x_p - eye| 2 tan(fovY/2) / height
+//     w(p,q) = [q is geometry] (cos+(n_p . n_q))^sigmaN exp(-D(p,q) / (2 footprint(p)^2))
+//     D(p,q) = c_p^2 |d_t|^2 / sigmaX^2 + (d . g_p)^2 / sigmaPlane^2,
+//     d = x_q - x_p,  d_t = d - (d . g_p) g_p,  c_p = max(|g_p . v_p|, cosFloor)
+//     footprint(p) = |x_p - eye| 2 tan(fovY/2) / height
 //
 // footprint(p) is the width of a pixel, in metres, on a surface facing the camera at p's distance,
-// so sigmaX is in pixels and the filter behaves the same at every distance and resolution.
+// so the sigmas are in pixels and the filter behaves the same at every distance and resolution.
+// g_p is p's geometric normal (the triangle's plane), v_p the direction to the eye, n the
+// interpolated normal without the normal map (`normals=shading`: the normal-mapped one).
+// The paper's convention (MATH.md 7) is sigmaPlane = sigmaX, cosFloor = 1, normals = shading:
+//     exp(-|x_p - x_q|^2 / (2 (sigmaX footprint(p))^2)).
+// The split is ours (#23 part 3): on a wall seen at a grazing angle, neighbouring pixels are up to
+// 1/|g.v| farther apart along the wall, so the paper's isotropic term smoothed such walls less than
+// walls seen face on and left the 4x4 pattern there; c_p undoes that (at most 1/cosFloor = 5x). The
+// distance off the plane gets its own, tighter sigma: a 10 cm curb seen at low resolution, where one
+// pixel spans more than 10 cm, is cut by it (the paper's sigma 3 mixed both sides). On a flat surface
+// d . g_p is 0 up to float rounding, so the tight sigma costs no smoothing there; on a curved,
+// tessellated one it stops smoothing across facets at about the angle the normal term does.
+// A normal map changes the shading normal from pixel to pixel; comparing those stopped smoothing on
+// bumpy floors, so the normal term compares interpolated normals.
 //
 // Overview
 // --------
@@ -36,14 +51,15 @@
 //  not the same filter (the second pass would weight the first pass's results, which already mixed
 //  other surfaces). The pass evaluates the full 2D window: (4m)^2 taps per pixel.
 //  Rejection. q with position.w = 0 (no geometry: background) gets weight 0; q on another surface
-//  far behind or in front of p (a wall, a depth discontinuity) gets exp(-d^2 / (2 sigma_x^2)), which
-//  is 0 in float beyond about 13 sigma_x; q facing away (n_p . n_q <= 0) gets 0 when sigmaN > 0.
+//  far behind or in front of p's plane (a wall, a depth discontinuity) gets
+//  exp(-(d . g_p)^2 / (2 (sigmaPlane footprint)^2)), which is 0 in float beyond about 13 sigmas;
+//  q facing away (n_p . n_q <= 0) gets 0 when sigmaN > 0.
 //  With sigmaN = 0 the normal term is 1 (x^0 = 1), also for opposite normals. Pixels without geometry
 //  keep their input value. p is always in its own window with weight 1, so the sum is never 0.
-//  sigmaX >= 1e19 (or infinity) turns the distance term off (weight exactly 1).
-//  Footprint. It is the pixel's width across the view ray, not along the surface: on a surface seen
-//  at a grazing angle neighbouring pixels are up to 1/cos farther apart, so the filter smooths less
-//  there (it never smooths more: no leak). A technique wanting more there raises sigmaX.
+//  sigmaX (sigmaPlane) >= 1e19 or infinity turns the in-plane (off-plane) term off; both off: weight 1.
+//  Footprint. The in-plane distance is measured in pixels along the surface (times c_p), the
+//  off-plane one in pixels across the view ray; `cosFloor` = 1 and `sigmaPlane` = sigmaX give the
+//  paper's isotropic distance (docs/smcir.md, "Filter on grazing walls", measures both).
 //  Disabled (enabled = false): the output is the input, bit for bit (same pass, one tap).
 //  Determinism: every pixel sums its taps in a fixed order; no atomics, no shared memory.
 //
@@ -75,7 +91,12 @@ struct BilateralFilterParams {
     bool enabled = true; // off: the output is the input
     int windowTiles = 2; // m: the window is 4m x 4m pixels (offsets -2m .. 2m-1), each 4x4 class m^2 times
     float sigmaN = 32.0f; // exponent of cos+(n_p . n_q) [-]; 0 ignores normals
-    float sigmaX = 3.0f;  // world-distance sigma in pixel footprints at p [pixels]; >= 1e19 ignores distance
+    float sigmaX = 3.0f;  // in-plane distance sigma in pixel footprints at p [pixels]; >= 1e19 ignores it
+    // Not in the paper (#23 part 3; the numbers in docs/smcir.md, "Filter on grazing walls"):
+    float sigmaPlane = 0.25f; // sigma of the distance off p's geometric plane [pixel footprints]; >= 1e19 ignores it
+    float cosFloor = 0.2f;   // in-plane distance times max(|g_p . v_p|, cosFloor); 1: not rescaled
+    enum { Interpolated = 0, Shading = 1 };
+    int normals = Interpolated; // which normal the normal term compares
     // Keys prefix + "enabled", prefix + "windowTiles", ... (a technique forwards e.g. "smcir.filter.").
     void visitParams(ParamVisitor& visitor, const std::string& prefix = "filter.");
 };

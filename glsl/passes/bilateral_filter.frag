@@ -2,24 +2,39 @@
 // Cross-bilateral filter over the 4x4-interleaved indirect radiance (gl/passes/bilateral_filter.h
 // has the prose): a 4m x 4m window, offsets -2m .. 2m-1 (shifted inwards at the image border) so
 // every interleaving class is in it m^2 times, weights
-//   w(p,q) = [q is geometry] min(cos+(n_p . n_q), 1)^sigmaN exp(-|x_p - x_q|^2 k_p),
-//   k_p = 1 / (2 (sigmaX footprint(p))^2).
+//   w(p,q) = [q is geometry] min(cos+(n_p . n_q), 1)^sigmaN
+//            exp(-[c_p^2 |d_t|^2 / sigmaX^2 + (d . g_p)^2 / sigmaPlane^2] / (2 footprint(p)^2)),
+//   d = x_q - x_p, g_p the geometric normal, d_t = d - (d . g_p) g_p, c_p = max(|g_p . v_p|, cosFloor).
+// n is the interpolated normal without the normal map (or the shading normal: uNormalSource).
 // Taps are summed in a fixed order (rows, then columns): deterministic.
 #include "../shared/bindings.h"
+#include "../shared/normals.h"
 
 layout(binding = kUnitBilateralInput) uniform sampler2D uInput;
 layout(binding = kUnitGBufferPosition) uniform sampler2D uPosition; // xyz world [m], w = 1 where hit
 layout(binding = kUnitGBufferNormal) uniform sampler2D uNormal;     // xyz shading normal
+layout(binding = kUnitGBufferSurfaceNormals) uniform sampler2D uSurfaceNormals; // oct geometric (xy), interpolated (zw)
 
 uniform ivec2 uSize;            // input, G-buffer and output size [pixels]
 uniform int uEnabled;           // 0: copy the input
 uniform int uWindowTiles;       // m
 uniform float uSigmaN;          // normal exponent; 0: no normal term
+uniform int uNormalSource;      // 0: interpolated normal without the normal map, 1: shading normal
 uniform float uInvTwoSigmaX2;   // 1 / (2 sigmaX^2) [1/pixels^2]; 0: no distance term
+uniform float uInvTwoSigmaPlane2; // 1 / (2 sigmaPlane^2) [1/pixels^2]; 0: no plane-distance term
+uniform float uCosFloor;        // c_p = max(|g_p . v_p|, uCosFloor); 1: in-plane distance not rescaled
 uniform vec3 uEye;              // camera position [m]
 uniform float uFootprintScale;  // 2 tan(fovY/2) / height: footprint(p) = |x_p - eye| uFootprintScale
 
 layout(location = 0) out vec4 outRadiance;
+
+// The normal the normal term compares: the interpolated one (no normal map: a bumpy texture does not
+// stop smoothing) or the shading one.
+vec3 filterNormal(ivec2 pixel)
+{
+    if (uNormalSource == 1) return texelFetch(uNormal, pixel, 0).xyz;
+    return octDecode(texelFetch(uSurfaceNormals, pixel, 0).zw);
+}
 
 void main()
 {
@@ -30,10 +45,18 @@ void main()
         outRadiance = centre;
         return;
     }
-    vec3 normalP = texelFetch(uNormal, p, 0).xyz;
-    float footprint = length(positionP.xyz - uEye) * uFootprintScale;
+    vec3 normalP = filterNormal(p);
+    vec3 toEye = uEye - positionP.xyz;
+    float footprint = length(toEye) * uFootprintScale;
     // (The floor keeps a pixel at the eye finite; no real G-buffer has one.)
-    float kp = uInvTwoSigmaX2 > 0.0 ? uInvTwoSigmaX2 / max(footprint * footprint, 1e-30) : 0.0;
+    float invFootprint2 = 1.0 / max(footprint * footprint, 1e-30);
+    // Not in the paper (#23 part 3): distances split along p's geometric plane. The in-plane part is
+    // scaled by c_p, so a wall seen at a grazing angle is smoothed over as many pixels as one seen
+    // face on; the part off the plane (a step, a curb, another surface) has its own, tighter sigma.
+    vec3 geometricP = octDecode(texelFetch(uSurfaceNormals, p, 0).xy);
+    float c = max(abs(dot(geometricP, normalize(toEye))), uCosFloor);
+    float kInPlane = uInvTwoSigmaX2 * c * c * invFootprint2;
+    float kOffPlane = uInvTwoSigmaPlane2 * invFootprint2;
 
     int width = 4 * uWindowTiles;
     // Shift the window inwards at the border rather than clip it: 4m consecutive pixels hold every
@@ -51,13 +74,13 @@ void main()
             float w = 1.0;
             if (uSigmaN > 0.0) {
                 // Half-float normals can give a dot product slightly above 1: clamp.
-                float c = clamp(dot(normalP, texelFetch(uNormal, q, 0).xyz), 0.0, 1.0);
-                w = c > 0.0 ? pow(c, uSigmaN) : 0.0;
+                float cosPQ = clamp(dot(normalP, filterNormal(q)), 0.0, 1.0);
+                w = cosPQ > 0.0 ? pow(cosPQ, uSigmaN) : 0.0;
             }
-            if (kp > 0.0) {
-                vec3 d = positionQ.xyz - positionP.xyz;
-                w *= exp(-dot(d, d) * kp);
-            }
+            vec3 d = positionQ.xyz - positionP.xyz;
+            float offPlane = dot(d, geometricP);
+            float exponent = kInPlane * max(dot(d, d) - offPlane * offPlane, 0.0) + kOffPlane * offPlane * offPlane;
+            if (exponent > 0.0) w *= exp(-exponent);
             // Numeric guard: a NaN or infinite tap (a defect upstream) would poison every pixel
             // whose window holds it (w * NaN, inf - inf); it gets weight 0 instead.
             vec4 value = texelFetch(uInput, q, 0);

@@ -18,6 +18,7 @@
 #include "core/util/params.h"
 #include "gl/api/debug.h"
 #include "gl/passes/bilateral_filter.h"
+#include "glsl/shared/normals.h"
 #include "determinism.h"
 #include "gl_test_context.h"
 #include "measured.h"
@@ -120,6 +121,14 @@ struct Fixture {
         output.resize(g.width, g.height);
         upload(gbuffer.position(), g.position);
         upload(gbuffer.normal(), g.normal);
+        // Geometric and interpolated normals (octahedral): both the box face's normal.
+        std::vector<glm::vec4> surfaceNormals(g.faceNormal.size(), glm::vec4(0.0f));
+        for (std::size_t i = 0; i < g.faceNormal.size(); ++i)
+            if (g.box[i] >= 0) {
+                const glm::vec2 e = shared::octEncode(g.faceNormal[i]);
+                surfaceNormals[i] = glm::vec4(e, e);
+            }
+        upload(gbuffer.surfaceNormals(), surfaceNormals);
         view.eye = g.eye;
         view.tanHalfFovY = g.tanHalfFovY;
     }
@@ -182,6 +191,17 @@ BilateralFilterParams unitWeights(int windowTiles)
     p.windowTiles = windowTiles;
     p.sigmaN = 0.0f;
     p.sigmaX = kInfinity;
+    p.sigmaPlane = kInfinity;
+    return p;
+}
+
+// The paper's isotropic distance term (MATH.md 7): one sigma for every direction, shading normals.
+BilateralFilterParams paperWeights()
+{
+    BilateralFilterParams p;
+    p.sigmaPlane = p.sigmaX;
+    p.cosFloor = 1.0f;
+    p.normals = BilateralFilterParams::Shading;
     return p;
 }
 
@@ -264,6 +284,7 @@ TEST_CASE("bilateral filter: with unit weights every pixel is the mean of the 16
     // A large finite sigmaX is the same as infinity, bit for bit (the pass sends 0 for both).
     BilateralFilterParams large = unitWeights(2);
     large.sigmaX = 1e19f;
+    large.sigmaPlane = 1e19f;
     const std::vector<glm::vec4> largeOut = fixture.run(filter, radiance, large);
     const std::vector<glm::vec4> infiniteOut = fixture.run(filter, radiance, unitWeights(2));
     CHECK(std::memcmp(largeOut.data(), infiniteOut.data(), largeOut.size() * sizeof(glm::vec4)) == 0);
@@ -343,10 +364,12 @@ TEST_CASE("bilateral filter: a thin wall keeps its unlit side at 0 and the lit s
         // (exactly 0 between perpendicular faces) keeps it dark, so it is checked with sigmaN > 0.
         if (sigmaN > 0.0f) CHECK(worstTop == 0.0f);
         // The noise drops by a large factor (the per-class factors cancel over the window). Measured
-        // after/before: sigmaN 32: floor 0.0021, front 0.0028; sigmaN 0: floor 0.011, front 0.071 (the
-        // front face then mixes with the floor and the dark top: a bias, not noise). Bounds ~2.5x.
-        CHECK(after < (sigmaN > 0.0f ? 0.006 : 0.03) * before);
-        CHECK(frontAfter < (sigmaN > 0.0f ? 0.008 : 0.2) * frontBefore);
+        // after/before: sigmaN 32: floor 0.0016, front 0.0026; sigmaN 0: floor 0.0016, front 0.015 (the
+        // front face then mixes with the dark top it meets at an edge: a bias, not noise). With the
+        // paper's isotropic distance (before #23 part 3) they were 0.0021, 0.0028, 0.011 and 0.071: the
+        // plane term now keeps the floor's taps off the front face. Bounds ~2.5x.
+        CHECK(after < 0.004 * before);
+        CHECK(frontAfter < (sigmaN > 0.0f ? 0.0065 : 0.04) * frontBefore);
     }
 
     // The smallest window (4x4, each class once): also dark behind the wall, less quiet in front.
@@ -364,7 +387,119 @@ TEST_CASE("bilateral filter: a thin wall keeps its unlit side at 0 and the lit s
     MEASURED("bilateral filter wall, 4x4 window: worst far-floor pixel " << worstUnlit << "; near-floor relative "
                                                                           << "variance " << before << " -> " << after);
     CHECK(worstUnlit == 0.0f);
-    CHECK(after < 0.016 * before); // measured 0.0064 (8x8: 0.0021)
+    CHECK(after < 0.012 * before); // measured 0.0045 (8x8: 0.0016; the paper's distance: 0.0064)
+}
+
+TEST_CASE("bilateral filter: walls seen at a grazing angle are smoothed like a wall seen face on", "[gl][numbers]")
+{
+    // A corridor 2 m wide and high, 5 m deep, seen along its axis: the side walls, floor and ceiling
+    // at grazing angles, the end wall face on. Every surface has the same true value (1) under the
+    // same structured noise; what is left after filtering is the 4x4 pattern the filter failed to average.
+    test::ensureGLContext();
+    CrossBilateralFilter filter(test::shaders());
+    const std::vector<Box> boxes = {
+        {{-1.1f, -1.0f, -5.0f}, {-1.0f, 1.0f, 1.0f}, 0}, // left
+        {{1.0f, -1.0f, -5.0f}, {1.1f, 1.0f, 1.0f}, 0},   // right
+        {{-1.0f, -1.1f, -5.0f}, {1.0f, -1.0f, 1.0f}, 0}, // floor
+        {{-1.0f, 1.0f, -5.0f}, {1.0f, 1.1f, 1.0f}, 0},   // ceiling
+        {{-1.0f, -1.0f, -5.1f}, {1.0f, 1.0f, -5.0f}, 1}, // end wall
+    };
+    const CpuGBuffer g = rayCast(boxes, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 96, 64);
+    Fixture fixture(g);
+    std::vector<glm::vec4> radiance(g.position.size(), glm::vec4(0.0f));
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x)
+            if (g.box[g.index(x, y)] >= 0) radiance[g.index(x, y)] = glm::vec4(noiseFactor(x, y));
+    // Mean |I - 1| over a wall's pixels, 4 pixels or more from any other wall (the window's reach).
+    auto error = [&](const std::vector<glm::vec4>& image, bool grazing) {
+        double sum = 0.0;
+        int count = 0;
+        for (int y = 4; y < g.height - 4; ++y)
+            for (int x = 4; x < g.width - 4; ++x) {
+                const std::size_t i = g.index(x, y);
+                if ((g.box[i] == 0) != grazing || g.box[i] < 0) continue;
+                bool inside = true;
+                for (int dy = -4; dy <= 4 && inside; ++dy)
+                    for (int dx = -4; dx <= 4 && inside; ++dx)
+                        inside = g.faceNormal[g.index(x + dx, y + dy)] == g.faceNormal[i];
+                if (!inside) continue;
+                sum += std::abs(image[i].r - 1.0);
+                ++count;
+            }
+        REQUIRE(count > 100);
+        return sum / count;
+    };
+    const double before = error(radiance, true);
+    const std::vector<glm::vec4> paper = fixture.run(filter, radiance, paperWeights());
+    const std::vector<glm::vec4> ours = fixture.run(filter, radiance, BilateralFilterParams{});
+    const double paperSide = error(paper, true), paperEnd = error(paper, false);
+    const double oursSide = error(ours, true), oursEnd = error(ours, false);
+    MEASURED("bilateral filter corridor: mean |I - 1| unfiltered " << before << "; paper's isotropic sigma: grazing "
+                                                                    << paperSide << ", face on " << paperEnd
+                                                                    << " (ratio " << paperSide / paperEnd
+                                                                    << "); default: grazing " << oursSide
+                                                                    << ", face on " << oursEnd << " (ratio "
+                                                                    << oursSide / oursEnd << ")");
+    CHECK(paperSide > 2.0 * paperEnd); // the case the test is about exists
+    CHECK(oursSide < 1.5 * oursEnd);   // #23 part 3's goal
+}
+
+TEST_CASE("bilateral filter: a 10 cm curb seen at low resolution keeps its dark side dark", "[gl][numbers]")
+{
+    // A road (y = 0) meeting a raised slab (y = 0.1) at z = -1, seen from 1.2 m up and 3 m away at
+    // 64 x 36: one pixel spans about 8 cm across the view ray and 25 cm along the road, so the curb's
+    // face is about one pixel high. The road is lit, the curb's face and the slab are not (as if the
+    // light came from the road's side, low): what the filter must not mix.
+    test::ensureGLContext();
+    CrossBilateralFilter filter(test::shaders());
+    const std::vector<Box> boxes = {
+        {{-20.0f, -0.2f, -1.0f}, {20.0f, 0.0f, 20.0f}, 0},  // road
+        {{-20.0f, -0.2f, -20.0f}, {20.0f, 0.1f, -1.0f}, 1}, // curb and slab
+    };
+    const CpuGBuffer g = rayCast(boxes, {0.0f, 1.2f, 2.0f}, {0.0f, 0.0f, -1.5f}, 64, 36);
+    Fixture fixture(g);
+    std::vector<glm::vec4> radiance(g.position.size(), glm::vec4(0.0f));
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x)
+            if (g.box[g.index(x, y)] == 0) radiance[g.index(x, y)] = glm::vec4(noiseFactor(x, y));
+    // Dark pixels with a lit one in their 8 x 8 window: where a leak shows.
+    std::vector<std::size_t> exposed;
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            if (g.box[g.index(x, y)] != 1) continue;
+            bool near = false;
+            for (int dy = -4; dy < 4; ++dy)
+                for (int dx = -4; dx < 4; ++dx) {
+                    const int qx = x + dx, qy = y + dy;
+                    if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height && g.box[g.index(qx, qy)] == 0)
+                        near = true;
+                }
+            if (near) exposed.push_back(g.index(x, y));
+        }
+    REQUIRE(exposed.size() > 100);
+    auto leak = [&](const BilateralFilterParams& params, double& worst) {
+        const std::vector<glm::vec4> out = fixture.run(filter, radiance, params);
+        double sum = 0.0;
+        worst = 0.0;
+        for (std::size_t i : exposed) {
+            sum += out[i].r;
+            worst = std::max(worst, static_cast<double>(out[i].r));
+        }
+        return sum / static_cast<double>(exposed.size()); // the lit side's mean is 1
+    };
+    double paperWorst = 0.0, defaultWorst = 0.0, halfWorst = 0.0;
+    const double paper = leak(paperWeights(), paperWorst);
+    BilateralFilterParams half;
+    half.sigmaPlane = 0.5f;
+    const double halfPlane = leak(half, halfWorst);
+    const double ours = leak(BilateralFilterParams{}, defaultWorst);
+    MEASURED("bilateral filter curb (64x36, " << exposed.size() << " dark pixels next to lit ones): mean (worst) "
+                                              << "leak, paper's isotropic sigma 3 " << paper << " (" << paperWorst
+                                              << "), sigmaPlane 0.5 " << halfPlane << " (" << halfWorst
+                                              << "), default sigmaPlane " << BilateralFilterParams{}.sigmaPlane << " "
+                                              << ours << " (" << defaultWorst << ")");
+    CHECK(paper > 0.05); // the paper's sigma mixes the two sides: the test can tell
+    CHECK(ours < 1e-4);
 }
 
 TEST_CASE("bilateral filter: a foreground object over a far background does not bleed", "[gl]")

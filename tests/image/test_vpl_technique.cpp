@@ -3,6 +3,7 @@
 // and the lazy shadow-map update against a full rebuild.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -137,6 +138,90 @@ TEST_CASE("smcir: exhaustive shadow-map shading against the ray-traced gather of
     // Measured -0.28% and 0.66% (64 x 64, I = 256): limits about 3x.
     CHECK(std::abs(meanError) < 0.01);
     CHECK(pixelError < 0.02);
+}
+
+TEST_CASE("smcir on cornell: the filter leaves no more of the 4x4 pattern on the grazing side walls than on the back wall",
+          "[image][smcir][numbers]")
+{
+    // #23 part 3: relative L1 per wall of the interleaved, filtered image against exhaustive shading of
+    // the same VPLs; the side walls are seen at |n.v| 0.1-0.35. Against the unfiltered exhaustive image
+    // (the issue's measure) the error is the 4x4 pattern the filter left plus the blur of the true
+    // light; against the exhaustive image through the same filter it is the pattern alone.
+    test::ensureGLContext();
+    const Scene scene = makeBuiltinScene("cornell");
+    const Camera& camera = scene.cameras[0];
+    const int width = 128, height = 128;
+    auto render = [&](Settings settings) {
+        settings.insert(settings.begin(), {{"smcir.vplCount", "256"}, {"smcir.warmupIterations", "3"},
+                                           {"smcir.synchronous", "true"}});
+        std::unique_ptr<Renderer> renderer = makeRenderer(scene, "smcir", settings);
+        return renderIndirect(*renderer, camera, width, height);
+    };
+    const Settings paperFilter = {{"smcir.filter.sigmaPlane", "3"}, {"smcir.filter.cosFloor", "1"},
+                                  {"smcir.filter.normals", "shading"}};
+    Settings exhaustive = {{"smcir.shading", "exhaustive"}};
+    const Rendered exact = render({{"smcir.shading", "exhaustive"}, {"smcir.filter.enabled", "false"}});
+    const Rendered exactOurs = render(exhaustive);
+    exhaustive.insert(exhaustive.end(), paperFilter.begin(), paperFilter.end());
+    const Rendered exactPaper = render(exhaustive);
+    const Rendered ours = render({});
+    const Rendered paper = render(paperFilter);
+    // The same VPLs in all (the sampler does not depend on how the GPU shades).
+    for (const Rendered* other : {&exactOurs, &exactPaper, &ours, &paper}) {
+        REQUIRE(exact.set.slots.size() == other->set.slots.size());
+        for (std::size_t i = 0; i < exact.set.slots.size(); ++i) {
+            REQUIRE(exact.set.slots[i].valid == other->set.slots[i].valid);
+            REQUIRE(exact.set.slots[i].position == other->set.slots[i].position);
+        }
+    }
+
+    // Which wall each pixel sees (primary rays through pixel centres); only pixels whose 9 x 9
+    // neighbourhood (the 8 x 8 window's reach) sees the same wall count, so edges do not dominate.
+    RayScene rays(scene);
+    CameraRays cameraRays(camera, width, height);
+    std::vector<std::string> wall(static_cast<std::size_t>(width * height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const Hit hit = rays.intersect(cameraRays.at(x + 0.5, y + 0.5));
+            if (!hit.valid()) continue;
+            const Instance& instance = scene.instances[static_cast<std::size_t>(hit.instance)];
+            wall[static_cast<std::size_t>(y * width + x)] = scene.meshes[static_cast<std::size_t>(instance.mesh)].name;
+        }
+    auto luminance = [](const float* v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; };
+    auto relativeL1 = [&](const ImageRGBA32F& image, const ImageRGBA32F& truth, const std::vector<std::string>& names) {
+        double difference = 0.0, reference = 0.0;
+        int count = 0;
+        for (int y = 4; y < height - 4; ++y)
+            for (int x = 4; x < width - 4; ++x) {
+                const std::string& name = wall[static_cast<std::size_t>(y * width + x)];
+                if (std::find(names.begin(), names.end(), name) == names.end()) continue;
+                bool inside = true;
+                for (int dy = -4; dy <= 4 && inside; ++dy)
+                    for (int dx = -4; dx <= 4 && inside; ++dx)
+                        inside = wall[static_cast<std::size_t>((y + dy) * width + x + dx)] == name;
+                if (!inside) continue;
+                difference += std::abs(luminance(image.at(x, y)) - luminance(truth.at(x, y)));
+                reference += luminance(truth.at(x, y));
+                ++count;
+            }
+        REQUIRE(count > 100);
+        return difference / reference;
+    };
+    const std::vector<std::string> sides = {"red_wall", "green_wall"}, back = {"back_wall"};
+    auto ratio = [&](const char* label, const ImageRGBA32F& image, const ImageRGBA32F& truth) {
+        const double side = relativeL1(image, truth, sides), end = relativeL1(image, truth, back);
+        MEASURED("smcir cornell 128^2, I = 256, " << label << ": relative L1 side walls " << side << ", back wall "
+                                                  << end << ", ratio " << side / end);
+        return side / end;
+    };
+    ratio("paper's filter vs exhaustive unfiltered", paper.indirect, exact.indirect);
+    ratio("default filter vs exhaustive unfiltered", ours.indirect, exact.indirect);
+    const double paperPattern = ratio("paper's filter vs exhaustive through it (pattern)", paper.indirect,
+                                      exactPaper.indirect);
+    const double oursPattern = ratio("default filter vs exhaustive through it (pattern)", ours.indirect,
+                                     exactOurs.indirect);
+    CHECK(paperPattern > 2.0); // the case the test is about exists
+    CHECK(oursPattern < 1.5);  // #23 part 3's goal, on the pattern
 }
 
 TEST_CASE("smcir: after 30 moving-light frames the lazily updated maps equal a full rebuild", "[image][smcir]")
