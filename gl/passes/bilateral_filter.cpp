@@ -23,6 +23,8 @@ void BilateralFilterParams::visitParams(ParamVisitor& v, const std::string& pref
             "sigma of the distance off p's geometric plane, in pixel footprints at p (ours); >= 1e19: ignored");
     v.field(prefix + "cosFloor", cosFloor, 0.01f, 1.0f,
             "in-plane distance scaled by max(|n_geometric . view|, cosFloor) (ours: grazing walls); 1: not scaled");
+    v.field(prefix + "grazingMinRoughness", grazingMinRoughness, 0.0f, 2.0f,
+            "surfaces at least this rough (perceptual) get the grazing rescale (ours); smoother ones keep c = 1");
     v.choice(prefix + "normals", normals, {"interpolated", "shading"},
              "normal of the normal term: interpolated without the normal map (ours) | shading (normal-mapped)");
 }
@@ -81,6 +83,7 @@ void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& inpu
     program.set("uInvTwoSigmaX2", invTwoSigma2(params.sigmaX));
     program.set("uInvTwoSigmaPlane2", invTwoSigma2(params.sigmaPlane));
     program.set("uCosFloor", params.cosFloor);
+    program.set("uGrazingMinRoughness", params.grazingMinRoughness);
     program.set("uNormalSource", params.normals);
     program.set("uEye", view.eye);
     program.set("uFootprintScale", 2.0f * view.tanHalfFovY / static_cast<float>(height));

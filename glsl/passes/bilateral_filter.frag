@@ -3,8 +3,9 @@
 // has the prose): a 4m x 4m window, offsets -2m .. 2m-1 (shifted inwards at the image border) so
 // every interleaving class is in it m^2 times, weights
 //   w(p,q) = [q is geometry] min(cos+(n_p . n_q), 1)^sigmaN
-//            exp(-[c_p^2 |d_t|^2 / sigmaX^2 + (d . g_p)^2 / sigmaPlane^2] / (2 footprint(p)^2)),
-//   d = x_q - x_p, g_p the geometric normal, d_t = d - (d . g_p) g_p, c_p = max(|g_p . v_p|, cosFloor).
+//            exp(-c_p c_q |d_t|^2 / (2 sigmaX^2 f_p f_q) - (d . g_p)^2 / (2 sigmaPlane^2 f_p^2)), f = footprint,
+//   d = x_q - x_p, g_p the geometric normal, d_t = d - (d . g_p) g_p, c_p = max(|g_p . v_p|, cosFloor)
+//   (1 on surfaces smoother than grazingMinRoughness).
 // n is the interpolated normal without the normal map (or the shading normal: uNormalSource).
 // Taps are summed in a fixed order (rows, then columns): deterministic.
 #include "../shared/bindings.h"
@@ -23,6 +24,7 @@ uniform int uNormalSource;      // 0: interpolated normal without the normal map
 uniform float uInvTwoSigmaX2;   // 1 / (2 sigmaX^2) [1/pixels^2]; 0: no distance term
 uniform float uInvTwoSigmaPlane2; // 1 / (2 sigmaPlane^2) [1/pixels^2]; 0: no plane-distance term
 uniform float uCosFloor;        // c_p = max(|g_p . v_p|, uCosFloor); 1: in-plane distance not rescaled
+uniform float uGrazingMinRoughness; // c_p = 1 on surfaces smoother than this (perceptual roughness)
 uniform vec3 uEye;              // camera position [m]
 uniform float uFootprintScale;  // 2 tan(fovY/2) / height: footprint(p) = |x_p - eye| uFootprintScale
 
@@ -34,6 +36,22 @@ vec3 filterNormal(ivec2 pixel)
 {
     if (uNormalSource == 1) return texelFetch(uNormal, pixel, 0).xyz;
     return octDecode(texelFetch(uSurfaceNormals, pixel, 0).zw);
+}
+
+// Pixels per metre along the surface at pixel `pixel` (position x, geometric normal g from the
+// G-buffer): c / footprint, c = max(|g . v|, uCosFloor) on surfaces at least uGrazingMinRoughness
+// rough, c = 1 (the isotropic distance) on smoother, glossier ones, whose reflection changes with the
+// view direction along a grazing surface (docs/smcir.md, "Filter on grazing walls").
+float inPlaneScale(ivec2 pixel, vec3 x)
+{
+    vec3 toEye = uEye - x;
+    float distanceToEye = length(toEye);
+    float footprint = max(distanceToEye * uFootprintScale, 1e-15);
+    float roughness = texelFetch(uNormal, pixel, 0).w;
+    if (roughness < uGrazingMinRoughness) return 1.0 / footprint;
+    vec3 g = octDecode(texelFetch(uSurfaceNormals, pixel, 0).xy);
+    float c = max(abs(dot(g, toEye)) / max(distanceToEye, 1e-30), uCosFloor);
+    return c / footprint;
 }
 
 void main()
@@ -54,8 +72,7 @@ void main()
     // scaled by c_p, so a wall seen at a grazing angle is smoothed over as many pixels as one seen
     // face on; the part off the plane (a step, a curb, another surface) has its own, tighter sigma.
     vec3 geometricP = octDecode(texelFetch(uSurfaceNormals, p, 0).xy);
-    float c = max(abs(dot(geometricP, normalize(toEye))), uCosFloor);
-    float kInPlane = uInvTwoSigmaX2 * c * c * invFootprint2;
+    float alongP = inPlaneScale(p, positionP.xyz);
     float kOffPlane = uInvTwoSigmaPlane2 * invFootprint2;
 
     int width = 4 * uWindowTiles;
@@ -79,6 +96,10 @@ void main()
             }
             vec3 d = positionQ.xyz - positionP.xyz;
             float offPlane = dot(d, geometricP);
+            // The geometric mean of p's and q's scales: symmetric in p and q (with p's alone, taps
+            // on the near side of p on a grazing floor weighed more than those on the far side, which
+            // moved the mean of a glossy floor by +4%).
+            float kInPlane = uInvTwoSigmaX2 * alongP * inPlaneScale(q, positionQ.xyz);
             float exponent = kInPlane * max(dot(d, d) - offPlane * offPlane, 0.0) + kOffPlane * offPlane * offPlane;
             if (exponent > 0.0) w *= exp(-exponent);
             // Numeric guard: a NaN or infinite tap (a defect upstream) would poison every pixel

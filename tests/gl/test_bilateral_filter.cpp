@@ -364,12 +364,12 @@ TEST_CASE("bilateral filter: a thin wall keeps its unlit side at 0 and the lit s
         // (exactly 0 between perpendicular faces) keeps it dark, so it is checked with sigmaN > 0.
         if (sigmaN > 0.0f) CHECK(worstTop == 0.0f);
         // The noise drops by a large factor (the per-class factors cancel over the window). Measured
-        // after/before: sigmaN 32: floor 0.0016, front 0.0026; sigmaN 0: floor 0.0016, front 0.015 (the
+        // after/before: sigmaN 32: floor 0.0016, front 0.0026; sigmaN 0: floor 0.0016, front 0.020 (the
         // front face then mixes with the dark top it meets at an edge: a bias, not noise). With the
         // paper's isotropic distance (before #23 part 3) they were 0.0021, 0.0028, 0.011 and 0.071: the
         // plane term now keeps the floor's taps off the front face. Bounds ~2.5x.
         CHECK(after < 0.004 * before);
-        CHECK(frontAfter < (sigmaN > 0.0f ? 0.0065 : 0.04) * frontBefore);
+        CHECK(frontAfter < (sigmaN > 0.0f ? 0.0065 : 0.05) * frontBefore);
     }
 
     // The smallest window (4x4, each class once): also dark behind the wall, less quiet in front.
@@ -499,7 +499,7 @@ TEST_CASE("bilateral filter: a 10 cm curb seen at low resolution keeps its dark 
                                               << "), default sigmaPlane " << BilateralFilterParams{}.sigmaPlane << " "
                                               << ours << " (" << defaultWorst << ")");
     CHECK(paper > 0.05); // the paper's sigma mixes the two sides: the test can tell
-    CHECK(ours < 1e-4);
+    CHECK(ours < 1e-4); // measured 2.4e-5: the slab's pixels next to the road still get a trace of it
 }
 
 TEST_CASE("bilateral filter: a foreground object over a far background does not bleed", "[gl]")
