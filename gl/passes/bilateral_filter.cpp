@@ -35,12 +35,15 @@ BilateralFilterView BilateralFilterView::fromCamera(const Camera& camera)
 }
 
 CrossBilateralFilter::CrossBilateralFilter(const gl::ShaderLoader& shaders)
-    : mPass(shaders, "bilateral filter", "passes/bilateral_filter.frag")
+    : mGuidePass(shaders, "bilateral filter guide", "passes/bilateral_guide.frag"),
+      mPass(shaders, "bilateral filter", "passes/bilateral_filter.frag"),
+      mGuide("bilateral filter guide", gl::RenderTargetDesc::colors({GL_RGBA32F}))
 {
 }
 
 void CrossBilateralFilter::reloadShaders(const gl::ShaderLoader& shaders)
 {
+    mGuidePass.reloadShaders(shaders);
     mPass.reloadShaders(shaders);
 }
 
@@ -75,6 +78,20 @@ void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& inpu
         return value < std::numeric_limits<float>::min() ? 0.0f : static_cast<float>(value);
     };
 
+    const float footprintScale = 2.0f * view.tanHalfFovY / static_cast<float>(height);
+    gbuffer.bindForReading();
+    if (params.enabled) {
+        // Per-pixel normal and in-plane scale, once (the filter's taps read them (4m)^2 times).
+        mGuide.resize(width, height);
+        const gl::Program& guide = mGuidePass.program();
+        guide.set("uNormalSource", params.normals);
+        guide.set("uCosFloor", params.cosFloor);
+        guide.set("uGrazingMinRoughness", params.grazingMinRoughness);
+        guide.set("uEye", view.eye);
+        guide.set("uFootprintScale", footprintScale);
+        mGuidePass.render(mGuide);
+    }
+
     const gl::Program& program = mPass.program();
     glProgramUniform2i(program.id(), program.uniformLocation("uSize"), width, height);
     program.set("uEnabled", params.enabled ? 1 : 0);
@@ -82,15 +99,15 @@ void CrossBilateralFilter::apply(const GBuffer& gbuffer, const gl::Texture& inpu
     program.set("uSigmaN", params.sigmaN);
     program.set("uInvTwoSigmaX2", invTwoSigma2(params.sigmaX));
     program.set("uInvTwoSigmaPlane2", invTwoSigma2(params.sigmaPlane));
-    program.set("uCosFloor", params.cosFloor);
-    program.set("uGrazingMinRoughness", params.grazingMinRoughness);
-    program.set("uNormalSource", params.normals);
     program.set("uEye", view.eye);
-    program.set("uFootprintScale", 2.0f * view.tanHalfFovY / static_cast<float>(height));
+    program.set("uFootprintScale", footprintScale);
 
-    gbuffer.bindForReading();
     glBindTextureUnit(shared::kUnitBilateralInput, input.id());
     glBindSampler(shared::kUnitBilateralInput, 0);
+    if (params.enabled) { // (disabled, the filter copies its input and reads no guide)
+        glBindTextureUnit(shared::kUnitBilateralGuide, mGuide.color(0).id());
+        glBindSampler(shared::kUnitBilateralGuide, 0);
+    }
     FullscreenDraw draw;
     draw.blend = blend;
     mPass.render(output, draw);

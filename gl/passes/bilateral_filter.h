@@ -41,9 +41,11 @@
 //
 // Overview
 // --------
-//  apply()  one fragment-shader pass (glsl/passes/bilateral_filter.frag) over the output target:
-//           reads the unfiltered input and the G-buffer position and normal with texelFetch,
-//           writes (or adds, FullscreenDraw::Blend::Add) the filtered radiance.
+//  apply()  two fragment-shader passes: the guide (glsl/passes/bilateral_guide.frag) writes each
+//           pixel's normal and in-plane scale c / footprint once; the filter
+//           (glsl/passes/bilateral_filter.frag) reads the unfiltered input, the G-buffer position
+//           and the guide with texelFetch and writes (or adds, FullscreenDraw::Blend::Add) the
+//           filtered radiance into the output target.
 //
 // Details
 // -------
@@ -130,7 +132,9 @@ public:
                FullscreenDraw::Blend blend = FullscreenDraw::Blend::None, gl::PassTimer* timer = nullptr) const;
 
 private:
+    FullscreenPass mGuidePass; // passes/bilateral_guide.frag: per-pixel normal and in-plane scale
     FullscreenPass mPass;
+    mutable gl::RenderTarget mGuide; // RGBA32F, the G-buffer's size (resized by apply)
 };
 
 } // namespace vplgi

@@ -6,53 +6,27 @@
 //            exp(-c_p c_q |d_t|^2 / (2 sigmaX^2 f_p f_q) - (d . g_p)^2 / (2 sigmaPlane^2 f_p^2)), f = footprint,
 //   d = x_q - x_p, g_p the geometric normal, d_t = d - (d . g_p) g_p, c_p = max(|g_p . v_p|, cosFloor)
 //   (1 on surfaces smoother than grazingMinRoughness).
-// n is the interpolated normal without the normal map (or the shading normal: uNormalSource).
+// n and c / f per pixel come from the guide pass (passes/bilateral_guide.frag): n is the interpolated
+// normal without the normal map (or the shading normal).
 // Taps are summed in a fixed order (rows, then columns): deterministic.
 #include "../shared/bindings.h"
 #include "../shared/normals.h"
 
 layout(binding = kUnitBilateralInput) uniform sampler2D uInput;
 layout(binding = kUnitGBufferPosition) uniform sampler2D uPosition; // xyz world [m], w = 1 where hit
-layout(binding = kUnitGBufferNormal) uniform sampler2D uNormal;     // xyz shading normal
 layout(binding = kUnitGBufferSurfaceNormals) uniform sampler2D uSurfaceNormals; // oct geometric (xy), interpolated (zw)
+layout(binding = kUnitBilateralGuide) uniform sampler2D uGuide; // xyz the normal term's normal, w c / footprint [1/m]
 
 uniform ivec2 uSize;            // input, G-buffer and output size [pixels]
 uniform int uEnabled;           // 0: copy the input
 uniform int uWindowTiles;       // m
 uniform float uSigmaN;          // normal exponent; 0: no normal term
-uniform int uNormalSource;      // 0: interpolated normal without the normal map, 1: shading normal
 uniform float uInvTwoSigmaX2;   // 1 / (2 sigmaX^2) [1/pixels^2]; 0: no distance term
 uniform float uInvTwoSigmaPlane2; // 1 / (2 sigmaPlane^2) [1/pixels^2]; 0: no plane-distance term
-uniform float uCosFloor;        // c_p = max(|g_p . v_p|, uCosFloor); 1: in-plane distance not rescaled
-uniform float uGrazingMinRoughness; // c_p = 1 on surfaces smoother than this (perceptual roughness)
 uniform vec3 uEye;              // camera position [m]
 uniform float uFootprintScale;  // 2 tan(fovY/2) / height: footprint(p) = |x_p - eye| uFootprintScale
 
 layout(location = 0) out vec4 outRadiance;
-
-// The normal the normal term compares: the interpolated one (no normal map: a bumpy texture does not
-// stop smoothing) or the shading one.
-vec3 filterNormal(ivec2 pixel)
-{
-    if (uNormalSource == 1) return texelFetch(uNormal, pixel, 0).xyz;
-    return octDecode(texelFetch(uSurfaceNormals, pixel, 0).zw);
-}
-
-// Pixels per metre along the surface at pixel `pixel` (position x, geometric normal g from the
-// G-buffer): c / footprint, c = max(|g . v|, uCosFloor) on surfaces at least uGrazingMinRoughness
-// rough, c = 1 (the isotropic distance) on smoother, glossier ones, whose reflection changes with the
-// view direction along a grazing surface (docs/smcir.md, "Filter on grazing walls").
-float inPlaneScale(ivec2 pixel, vec3 x)
-{
-    vec3 toEye = uEye - x;
-    float distanceToEye = length(toEye);
-    float footprint = max(distanceToEye * uFootprintScale, 1e-15);
-    float roughness = texelFetch(uNormal, pixel, 0).w;
-    if (roughness < uGrazingMinRoughness) return 1.0 / footprint;
-    vec3 g = octDecode(texelFetch(uSurfaceNormals, pixel, 0).xy);
-    float c = max(abs(dot(g, toEye)) / max(distanceToEye, 1e-30), uCosFloor);
-    return c / footprint;
-}
 
 void main()
 {
@@ -63,7 +37,7 @@ void main()
         outRadiance = centre;
         return;
     }
-    vec3 normalP = filterNormal(p);
+    vec4 guideP = texelFetch(uGuide, p, 0);
     vec3 toEye = uEye - positionP.xyz;
     float footprint = length(toEye) * uFootprintScale;
     // (The floor keeps a pixel at the eye finite; no real G-buffer has one.)
@@ -72,7 +46,6 @@ void main()
     // scaled by c_p, so a wall seen at a grazing angle is smoothed over as many pixels as one seen
     // face on; the part off the plane (a step, a curb, another surface) has its own, tighter sigma.
     vec3 geometricP = octDecode(texelFetch(uSurfaceNormals, p, 0).xy);
-    float alongP = inPlaneScale(p, positionP.xyz);
     float kOffPlane = uInvTwoSigmaPlane2 * invFootprint2;
 
     int width = 4 * uWindowTiles;
@@ -88,10 +61,11 @@ void main()
             ivec2 q = ivec2(x, y);
             vec4 positionQ = texelFetch(uPosition, q, 0);
             if (positionQ.w == 0.0) continue; // background: no surface to share light with
+            vec4 guideQ = texelFetch(uGuide, q, 0);
             float w = 1.0;
             if (uSigmaN > 0.0) {
                 // Half-float normals can give a dot product slightly above 1: clamp.
-                float cosPQ = clamp(dot(normalP, filterNormal(q)), 0.0, 1.0);
+                float cosPQ = clamp(dot(guideP.xyz, guideQ.xyz), 0.0, 1.0);
                 w = cosPQ > 0.0 ? pow(cosPQ, uSigmaN) : 0.0;
             }
             vec3 d = positionQ.xyz - positionP.xyz;
@@ -99,7 +73,7 @@ void main()
             // The geometric mean of p's and q's scales: symmetric in p and q (with p's alone, taps
             // on the near side of p on a grazing floor weighed more than those on the far side, which
             // moved the mean of a glossy floor by +4%).
-            float kInPlane = uInvTwoSigmaX2 * alongP * inPlaneScale(q, positionQ.xyz);
+            float kInPlane = uInvTwoSigmaX2 * guideP.w * guideQ.w;
             float exponent = kInPlane * max(dot(d, d) - offPlane * offPlane, 0.0) + kOffPlane * offPlane * offPlane;
             if (exponent > 0.0) w *= exp(-exponent);
             // Numeric guard: a NaN or infinite tap (a defect upstream) would poison every pixel
