@@ -41,8 +41,9 @@ void VPLRenderParams::visitParams(ParamVisitor& v, const std::string& prefix)
              "one-texel fetch in place of the shadow lookup: what the lookups cost)");
     v.field(prefix + ".normalOffset", normalOffset, 0.0f, 64.0f,
             "shadow test: lift the shaded point along its normal by this many map texels (not in the paper)");
-    v.field(prefix + ".depthBias", depthBias, 0.0f, 1.0f,
-            "shadow test: lit while distance <= stored * (1 + bias) (not in the paper)");
+    v.field(prefix + ".depthBias", depthBias, 0.0f, 64.0f,
+            "shadow test: lit while distance <= stored + bias map texels at the distance, i.e. stored * (1 + 4 bias / "
+            "mapSize) (not in the paper)");
     v.field(prefix + ".shadowBatch", shadowBatch, 1, 65536, "VPLs whose cube faces are rendered per batch");
     v.field(prefix + ".mapsPerFrame", mapsPerFrame, 0, 1 << 20,
             "most shadow maps made per frame, the rest in later frames (spreads the initial build); 0 = all");
@@ -252,7 +253,10 @@ void VPLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, con
         program.set("uMapSize", readsMaps ? mShadowMaps->params().mapSize : 1);
         program.set("uMapTilesPerRow", readsMaps ? mShadowMaps->layout().tilesPerRow : 1);
         program.set("uNormalOffset", mRender.normalOffset);
-        program.set("uDepthBias", mRender.depthBias);
+        // depthBias [texels at the distance] as the relative bias the lookup takes: a paraboloid texel
+        // spans up to 4/N radians, so the bias shrinks with the map resolution (as the paper's, Fig. 9).
+        program.set("uDepthBias", readsMaps ? 4.0f * mRender.depthBias / static_cast<float>(mShadowMaps->params().mapSize)
+                                            : 0.0f);
         mShading->render(mInterleaved);
     }
     // 4. The cross-bilateral filter (section 4) over the interleaved result, into the indirect target.

@@ -135,9 +135,103 @@ TEST_CASE("smcir: exhaustive shadow-map shading against the ray-traced gather of
     MEASURED("smcir cornell, 128^2 paraboloid maps vs ray-traced visibility (same 256 VPLs): mean "
              << meanError << ", mean |pixel difference| / mean " << pixelError);
     CHECK(meanLuminance(cpu) > 0.0);
-    // Measured -0.28% and 0.66% (64 x 64, I = 256): limits about 3x.
+    // Measured -0.45% and 0.78% (64 x 64, I = 256; -0.28% and 0.66% with the former depth bias of 2%
+    // of the distance, which also let light through thin walls): limits 2.2x and 2.6x.
     CHECK(std::abs(meanError) < 0.01);
     CHECK(pixelError < 0.02);
+}
+
+namespace {
+
+// A 2 cm slab, 40 cm high, standing on a floor, and a wall 1.5 m in front of it lit by a spot that
+// lights nothing behind the slab: the VPLs on the wall (the only ones that reach behind the slab,
+// over its top) leave the floor within 30 cm behind the slab in the slab's shadow (the shadow of
+// the top edge from the wall's highest point falls 40 cm behind). `camera` looks at that floor.
+Scene slabScene()
+{
+    Scene scene;
+    scene.name = "slab";
+    const int grey = test::addTestMaterial(scene, "grey", glm::vec3(0.7f));
+    test::addTestQuad(scene, grey, {-2.0f, 0.0f, 2.0f}, {4.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -4.0f}); // floor, up
+    test::addTestQuad(scene, grey, {-1.5f, 0.0f, 0.01f}, {3.0f, 0.0f, 0.0f}, {0.0f, 0.4f, 0.0f}); // slab front, +z
+    test::addTestQuad(scene, grey, {1.5f, 0.0f, -0.01f}, {-3.0f, 0.0f, 0.0f}, {0.0f, 0.4f, 0.0f}); // slab back, -z
+    test::addTestQuad(scene, grey, {-1.5f, 0.4f, 0.01f}, {3.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -0.02f}); // slab top
+    test::addTestQuad(scene, grey, {2.0f, 0.0f, 1.5f}, {-4.0f, 0.0f, 0.0f}, {0.0f, 1.5f, 0.0f});   // wall, -z
+    scene.lights.push_back(test::makeTestSpot("spot", {0.0f, 1.2f, 0.5f}, {0.0f, -0.4f, 1.0f}, 20.0f, 0.4f, 0.5f));
+    test::addTestCamera(scene, "behind", {0.0f, 1.2f, -1.6f}, {0.0f, 0.0f, -0.2f});
+    scene.validate();
+    return scene;
+}
+
+} // namespace
+
+TEST_CASE("ir: a slab standing on a floor keeps the floor behind it dark with shadow maps", "[image][ir][numbers]")
+{
+    // #23 part 4: a depth bias must not let light through a thin object where it touches the
+    // floor. Exhaustive shading with the paraboloid maps against the CPU gather of the same VPLs
+    // (Embree), on the floor within 30 cm behind the slab (the gather: exactly 0 there).
+    test::ensureGLContext();
+    const Scene scene = slabScene();
+    const Camera& camera = scene.cameras[0];
+    const int width = 96, height = 64;
+    RayScene rays(scene);
+    CameraRays cameraRays(camera, width, height);
+    std::vector<int> region(static_cast<std::size_t>(width * height), 0); // 1 band, 2 floor beyond 70 cm
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const Ray ray = cameraRays.at(x + 0.5, y + 0.5);
+            const Hit hit = rays.intersect(ray);
+            if (!hit.valid() || hit.instance != 0) continue; // the floor
+            const glm::vec3 p = ray.origin + hit.t * ray.direction;
+            region[static_cast<std::size_t>(y * width + x)] = (p.z > -0.3f && p.z < -0.01f) ? 1 : (p.z < -0.7f ? 2 : 0);
+        }
+    auto luminance = [](const float* v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; };
+    for (const char* bias : {"0.16", "0.64"}) { // the default, and the former 2% of the distance at 128^2
+        std::unique_ptr<Renderer> renderer = makeRenderer(
+            scene, "ir",
+            {{"ir.vplCount", "1024"}, {"ir.bounces", "1"}, {"ir.shading", "exhaustive"}, {"ir.filter.enabled", "false"},
+             {"ir.synchronous", "true"}, {"ir.depthBias", bias}});
+        const Rendered gpu = renderIndirect(*renderer, camera, width, height);
+        VPLGatherParams gather;
+        const float d = 2.0f * rays.sceneScale() / std::sqrt(1024.0f); // clampScale D / sqrt(I), written out
+        gather.clampGeometry = 1.0f / (d * d);
+        const ImageRGBA32F cpu = renderVPLGather(scene, rays, camera, width, height, gpu.set, gather);
+        double band[2] = {}, beyond[2] = {}, bandMax = 0.0;
+        int bandCount = 0, beyondCount = 0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const int r = region[static_cast<std::size_t>(y * width + x)];
+                if (r == 0) continue;
+                const double g = luminance(gpu.indirect.at(x, y)), c = luminance(cpu.at(x, y));
+                if (r == 1) {
+                    band[0] += g;
+                    band[1] += c;
+                    bandMax = std::max(bandMax, g);
+                    ++bandCount;
+                } else {
+                    beyond[0] += g;
+                    beyond[1] += c;
+                    ++beyondCount;
+                }
+            }
+        REQUIRE(bandCount > 100);
+        REQUIRE(beyondCount > 100);
+        REQUIRE(beyond[1] > 0.0);
+        const double lit = beyond[1] / beyondCount;
+        MEASURED("ir slab, depthBias " << bias << " texels: floor within 30 cm behind the slab (" << bandCount
+                                       << " pixels), mean / the lit floor's mean: shadow maps " << band[0] / bandCount / lit
+                                       << " (max " << bandMax / lit << "), Embree " << band[1] / bandCount / lit
+                                       << "; lit floor, shadow maps / Embree - 1: " << beyond[0] / beyond[1] - 1.0);
+        CHECK(band[1] == 0.0); // the geometry does what the test needs
+        // Measured (128^2 maps): the default 0.08 of the lit floor's mean (max 1.0), the former bias
+        // 1.03 (max 10.8): it lit the whole band. What the default leaves comes from the normal
+        // offset (1 texel, 6 cm here, lifts the receiver towards the slab's top edge); with 512^2 maps
+        // the band is exactly 0 with either bias. The lit floor beyond 70 cm is in the long, grazing
+        // shadows of the VPLs low on the wall, where the same offset moves the shadow's edge:
+        // +141% against Embree at 128^2, +31% at 512^2 (docs/smcir.md).
+        if (std::string(bias) == "0.16") CHECK(band[0] / bandCount < 0.25 * lit);
+        else CHECK(band[0] / bandCount > 0.5 * lit); // the test can tell the former bias
+    }
 }
 
 TEST_CASE("smcir on cornell: the filter leaves no more of the 4x4 pattern on the grazing side walls than on the back wall",
@@ -516,7 +610,7 @@ TEST_CASE("smcir on the shared CornellBox.glb (millimetres): shadow maps agree w
              << " (mean |pixel difference| / mean " << pixelsAgainstRays << "), mean vs the path tracer "
              << againstPath);
     CHECK(meanLuminance(truth) > 0.0);
-    // Measured -0.23% / -0.31% and 1.1% / 0.98%: limits about 3x.
+    // Measured -0.38% and 1.04% (-0.31% and 0.97% with the former depth bias): limits about 2.6x and 3x.
     CHECK(std::abs(againstRays) < 0.01);
     CHECK(pixelsAgainstRays < 0.03);
     // Measured +18.2% (+20.0% with the paper's ranking by the rendered radiance): SMCIR's own bias at
