@@ -41,7 +41,7 @@
 //  map resolution (Fig. 9, lines 1237-1238) but gives no value; ours is in texels so it shrinks as
 //  the maps grow. Default 0.16 texels (0.5% of d at N = 128): the former 2% of d let light through
 //  a 10 cm wall from VPLs 5 m away (the sealed room: `ir` 5.7e-4 of the lit room's mean, 0 now; 8
-//  seeds, docs/smcir.md "Visibility and shadow-map size").
+//  seeds, docs/smcir.md "Depth bias and thin walls").
 //
 // References
 // ----------
