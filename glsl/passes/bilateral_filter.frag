@@ -71,8 +71,8 @@ void main()
             vec3 d = positionQ.xyz - positionP.xyz;
             float offPlane = dot(d, geometricP);
             // The geometric mean of p's and q's scales: symmetric in p and q (with p's alone, taps
-            // on the near side of p on a grazing floor weighed more than those on the far side, which
-            // moved the mean of a glossy floor by +4%).
+            // on the near side of p on a grazing floor weighed more than those on the far side: the
+            // glossy metal floor's mean came out +5.1%, +2.9% with both, before the glossy exception).
             float kInPlane = uInvTwoSigmaX2 * guideP.w * guideQ.w;
             float exponent = kInPlane * max(dot(d, d) - offPlane * offPlane, 0.0) + kOffPlane * offPlane * offPlane;
             if (exponent > 0.0) w *= exp(-exponent);

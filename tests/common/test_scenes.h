@@ -120,6 +120,21 @@ inline ImageRGBA32F oneBounceReference(const Scene& scene, const Camera& camera,
     return renderReference(scene, rays, camera, width, height, params).image;
 }
 
+// Luminance (Rec. 709) of one RGB(A) pixel.
+inline double pixelLuminance(const float* p)
+{
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+// G_max = 1/d^2, d = clampScale D / sqrt(I) with the default clampScale 2 (smcir's and ir's rule,
+// written out here rather than read from the technique: a test of the GPU side against the CPU
+// gather then also checks that the technique uses this rule).
+inline float vplClampGeometry(const RayScene& rays, int vplCount)
+{
+    const float d = 2.0f * rays.sceneScale() / std::sqrt(static_cast<float>(vplCount));
+    return 1.0f / (d * d);
+}
+
 // Mean luminance (Rec. 709) over the pixels of an image; 0 for an empty one.
 inline double meanLuminance(const ImageRGBA32F& image)
 {
@@ -135,9 +150,8 @@ inline double relativeL1(const ImageRGBA32F& a, const ImageRGBA32F& b)
 {
     double sum = 0.0, sumB = 0.0;
     for (std::size_t i = 0; i + 3 < a.pixels.size(); i += 4) {
-        auto y = [](const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; };
-        sum += std::abs(y(&a.pixels[i]) - y(&b.pixels[i]));
-        sumB += y(&b.pixels[i]);
+        sum += std::abs(pixelLuminance(&a.pixels[i]) - pixelLuminance(&b.pixels[i]));
+        sumB += pixelLuminance(&b.pixels[i]);
     }
     return sumB > 0.0 ? sum / sumB : 0.0;
 }

@@ -12,6 +12,7 @@
 #include "core/vpl/vpl_gather.h"
 #include "gl/renderer.h"
 #include "gl_test_context.h"
+#include "test_scenes.h"
 
 using namespace vplgi;
 
@@ -40,8 +41,7 @@ TEST_CASE("smcir-rt adds the CPU gather of the sampler's first VPL set", "[image
     SMCIRSampler sampler(scene, rays, params);
     sampler.initialize(camera, static_cast<float>(width) / height);
     VPLGatherParams gather;
-    const float d = 2.0f * rays.sceneScale() / std::sqrt(256.0f); // clampScale D / sqrt(I), written out
-    gather.clampGeometry = 1.0f / (d * d);
+    gather.clampGeometry = test::vplClampGeometry(rays, 256);
     const ImageRGBA32F indirect = renderVPLGather(scene, rays, camera, width, height, sampler.vpls(), gather);
 
     double worst = 0.0, indirectSum = 0.0;

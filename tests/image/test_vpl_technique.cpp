@@ -127,8 +127,7 @@ TEST_CASE("smcir: exhaustive shadow-map shading against the ray-traced gather of
 
     RayScene rays(scene);
     VPLGatherParams gather;
-    const float d = 2.0f * rays.sceneScale() / std::sqrt(256.0f); // clampScale D / sqrt(I), written out
-    gather.clampGeometry = 1.0f / (d * d);
+    gather.clampGeometry = test::vplClampGeometry(rays, 256);
     const ImageRGBA32F cpu = renderVPLGather(scene, rays, camera, width, height, gpu.set, gather);
     const double meanError = meanLuminance(gpu.indirect) / meanLuminance(cpu) - 1.0;
     const double pixelError = meanAbsoluteRelative(gpu.indirect, cpu);
@@ -185,7 +184,6 @@ TEST_CASE("ir: a slab standing on a floor keeps the floor behind it dark with sh
             const glm::vec3 p = ray.origin + hit.t * ray.direction;
             region[static_cast<std::size_t>(y * width + x)] = (p.z > -0.3f && p.z < -0.01f) ? 1 : (p.z < -0.7f ? 2 : 0);
         }
-    auto luminance = [](const float* v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; };
     for (const char* bias : {"0.16", "0.64"}) { // the default, and the former 2% of the distance at 128^2
         std::unique_ptr<Renderer> renderer = makeRenderer(
             scene, "ir",
@@ -193,8 +191,7 @@ TEST_CASE("ir: a slab standing on a floor keeps the floor behind it dark with sh
              {"ir.synchronous", "true"}, {"ir.depthBias", bias}});
         const Rendered gpu = renderIndirect(*renderer, camera, width, height);
         VPLGatherParams gather;
-        const float d = 2.0f * rays.sceneScale() / std::sqrt(1024.0f); // clampScale D / sqrt(I), written out
-        gather.clampGeometry = 1.0f / (d * d);
+        gather.clampGeometry = test::vplClampGeometry(rays, 1024);
         const ImageRGBA32F cpu = renderVPLGather(scene, rays, camera, width, height, gpu.set, gather);
         double band[2] = {}, beyond[2] = {}, bandMax = 0.0;
         int bandCount = 0, beyondCount = 0;
@@ -202,7 +199,7 @@ TEST_CASE("ir: a slab standing on a floor keeps the floor behind it dark with sh
             for (int x = 0; x < width; ++x) {
                 const int r = region[static_cast<std::size_t>(y * width + x)];
                 if (r == 0) continue;
-                const double g = luminance(gpu.indirect.at(x, y)), c = luminance(cpu.at(x, y));
+                const double g = test::pixelLuminance(gpu.indirect.at(x, y)), c = test::pixelLuminance(cpu.at(x, y));
                 if (r == 1) {
                     band[0] += g;
                     band[1] += c;
@@ -281,7 +278,6 @@ TEST_CASE("smcir on cornell: the filter leaves no more of the 4x4 pattern on the
             const Instance& instance = scene.instances[static_cast<std::size_t>(hit.instance)];
             wall[static_cast<std::size_t>(y * width + x)] = scene.meshes[static_cast<std::size_t>(instance.mesh)].name;
         }
-    auto luminance = [](const float* v) { return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]; };
     auto relativeL1 = [&](const ImageRGBA32F& image, const ImageRGBA32F& truth, const std::vector<std::string>& names) {
         double difference = 0.0, reference = 0.0;
         int count = 0;
@@ -294,8 +290,8 @@ TEST_CASE("smcir on cornell: the filter leaves no more of the 4x4 pattern on the
                     for (int dx = -4; dx <= 4 && inside; ++dx)
                         inside = wall[static_cast<std::size_t>((y + dy) * width + x + dx)] == name;
                 if (!inside) continue;
-                difference += std::abs(luminance(image.at(x, y)) - luminance(truth.at(x, y)));
-                reference += luminance(truth.at(x, y));
+                difference += std::abs(test::pixelLuminance(image.at(x, y)) - test::pixelLuminance(truth.at(x, y)));
+                reference += test::pixelLuminance(truth.at(x, y));
                 ++count;
             }
         REQUIRE(count > 100);
