@@ -418,8 +418,9 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::sampleCandidates(const std::v
             for (const glm::vec3& q : positions) ++counts[key(q)];
             for (std::size_t i = 0; i < positions.size(); ++i) weight[i] = 1.0 / counts[key(positions[i])];
         } else if (hits.size() > k) {
-            const KNNIndex index(std::move(positions));
-            const std::vector<float> r2 = index.neighbourDistancesSquared(k);
+            // The grid search returns the kd-tree's r_k^2 bit for bit (test_knn.cpp) in a fraction
+            // of its time (#23 part 7; docs/smcir.md, "Sampler cost"); its buffers stay between frames.
+            const std::vector<float>& r2 = mCandidateSearch.distancesSquared(positions, k);
             std::copy(r2.begin(), r2.end(), weight.begin());
         }
         std::vector<double> cdf(hits.size());

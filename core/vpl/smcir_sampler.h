@@ -164,6 +164,7 @@
 #include "core/scene/frame_snapshot.h"
 #include "core/trace/path_tracer.h"
 #include "core/trace/ray_scene.h"
+#include "core/util/knn.h"
 #include "core/vpl/vpl_pipeline.h"
 #include "core/scene/scene.h"
 #include "core/scene/surface.h"
@@ -347,6 +348,7 @@ private:
     // VPL's k-th neighbour distance can only change when a point was added or removed within it.
     std::vector<glm::vec3> mDensityPositions;
     std::vector<float> mDensityR2;
+    NeighbourSearch mCandidateSearch; // line 6's kNN; its buffers kept between frames
     std::vector<char> mDensityValid;
     std::size_t mDensityK = ~std::size_t{0}; // neighbour of that estimate (a different one recomputes all)
     std::vector<float> mRankDensity;              // per slot, the density lines 9-12 rank by (smcir.knnRank)

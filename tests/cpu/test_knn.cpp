@@ -1,4 +1,4 @@
-// kNN (core/util/knn.h): nanoflann against brute force, the eq. (7) density of uniform points against
+// kNN (core/util/knn.h): nanoflann and the grid against brute force, the eq. (7) density of uniform points against
 // N/area, and the timing of both (printed, not asserted).
 #include <catch2/catch.hpp>
 
@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "core/util/knn.h"
@@ -32,6 +33,24 @@ std::vector<glm::vec3> randomPoints(std::size_t n, std::uint32_t seed, const glm
     for (glm::vec3& p : points) {
         const float x = u(), y = u(), z = u();
         p = glm::vec3(x, y, z) * extent;
+    }
+    return points;
+}
+
+// n points uniform over the six faces of an axis-aligned box (by face area) and over a smaller box
+// standing inside it: the walls an interior's raw SMCIR candidates land on.
+std::vector<glm::vec3> boxSurfacePoints(std::size_t n, std::uint32_t seed)
+{
+    Uniform u(seed);
+    std::vector<glm::vec3> points(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const bool inner = (i % 5) == 0;
+        const glm::vec3 lower = inner ? glm::vec3(1.0f, 0.0f, 2.0f) : glm::vec3(0.0f);
+        const glm::vec3 size = inner ? glm::vec3(1.6f, 3.3f, 1.6f) : glm::vec3(5.5f, 5.5f, 5.6f);
+        const int face = static_cast<int>(u() * 6.0f) % 6, axis = face / 2;
+        glm::vec3 p(u(), u(), u());
+        p[axis] = static_cast<float>(face % 2);
+        points[i] = lower + p * size;
     }
     return points;
 }
@@ -170,5 +189,122 @@ TEST_CASE("kNN timing: nanoflann against brute force at SMCIR's sizes (printed)"
                     " brute force %.2f ms\n",
                     k, buildMs, treeMs, bruteMs);
         CHECK(tree == brute);
+    }
+}
+
+TEST_CASE("kNN grid: every point's k-th neighbour distance equals the kd-tree's bit for bit, on surfaces, volumes, "
+          "clusters with outliers and degenerate sets", "[knn]")
+{
+    // neighbourDistancesSquared(points, k) is an optimisation of KNNIndex::neighbourDistancesSquared:
+    // the values must be identical (SMCIR's resampling weights and so its VPLs stay bit-identical).
+    // The stats show which structure answered, so each set checks the path it is meant to reach: the
+    // grid, finer grids, brute force and the tree each answer some set here.
+    struct Set {
+        const char* name;
+        std::vector<glm::vec3> points;
+    };
+    std::vector<Set> sets;
+    sets.push_back({"box walls 32768", boxSurfacePoints(32768, 3u)});
+    sets.push_back({"volume 3000", randomPoints(3000, 4u, glm::vec3(4.0f, 1.0f, 3.0f))});
+    {
+        // Three blobs a hundred times apart in spread, and far outliers the grid leaves to the tree.
+        std::vector<glm::vec3> p = randomPoints(2000, 5u, glm::vec3(0.01f));
+        for (const glm::vec3& q : randomPoints(2000, 6u, glm::vec3(1.0f))) p.push_back(q + glm::vec3(3.0f, 0.0f, 0.0f));
+        for (const glm::vec3& q : boxSurfacePoints(4000, 7u)) p.push_back(q - glm::vec3(10.0f));
+        for (int i = 0; i < 6; ++i) p.push_back(glm::vec3(40.0f + 7.0f * float(i), -30.0f, 25.0f * float(i % 2)));
+        sets.push_back({"clusters + outliers", p});
+    }
+    {
+        std::vector<glm::vec3> p = boxSurfacePoints(5000, 8u);
+        for (std::size_t i = 0; i < 5000; i += 7) p.push_back(p[i]); // exact duplicates: distance 0
+        sets.push_back({"walls with duplicates", p});
+    }
+    {
+        Uniform u(9u);
+        std::vector<glm::vec3> line(500), plane(800);
+        for (glm::vec3& q : line) q = glm::vec3(u() * 3.0f, 1.0f, 2.0f);
+        for (glm::vec3& q : plane) q = glm::vec3(u() * 3.0f, 1.0f, u() * 2.0f);
+        sets.push_back({"collinear 500", line});
+        sets.push_back({"plane 800", plane});
+    }
+    sets.push_back({"coincident 50", std::vector<glm::vec3>(50, glm::vec3(1.0f, 2.0f, 3.0f))});
+    sets.push_back({"three points", {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 2.0f)}});
+
+    for (const Set& set : sets) {
+        const KNNIndex tree(set.points);
+        for (std::size_t k : {1, 2, 3, 9}) {
+            NeighbourSearchStats stats;
+            const std::vector<float> grid = neighbourDistancesSquared(set.points, k, &stats);
+            const std::vector<float> reference = tree.neighbourDistancesSquared(k);
+            REQUIRE(grid.size() == set.points.size());
+            std::size_t mismatches = 0;
+            for (std::size_t i = 0; i < grid.size(); ++i)
+                if (!(grid[i] == reference[i] || (std::isinf(grid[i]) && std::isinf(reference[i])))) ++mismatches;
+            std::printf("kNN grid, %-22s k = %zu: grid %s, %zu points by the grid (%zu by finer grids), %zu by brute force,"
+                        " %zu by the tree, %zu cells of %.4f m; %zu mismatches\n",
+                        set.name, k, stats.grid ? "used" : "declined", stats.gridPoints, stats.finerPoints,
+                        stats.bruteForcePoints, stats.treePoints, stats.cells, double(stats.cellSize), mismatches);
+            CHECK(mismatches == 0);
+            CHECK(stats.gridPoints + stats.bruteForcePoints + stats.treePoints == set.points.size() * (set.points.size() > k ? 1 : 0));
+            const std::string name = set.name;
+            if (name == "box walls 32768" || name == "volume 3000" || name == "walls with duplicates" || name == "plane 800") {
+                // Spread sets: nearly everything answered by the grid (else this test would check the
+                // tree); measured 98.6-100% (the rest: crowded corners at k = 9, duplicates).
+                CHECK(stats.grid);
+                CHECK(stats.gridPoints >= set.points.size() * 96 / 100);
+            }
+            if (name == "clusters + outliers") {
+                // The 1 cm blob (10^6 times the walls' density) crowds its cell: a finer grid answers
+                // it; the six outliers lie outside the grid's quantile box: brute force answers them.
+                CHECK(stats.grid);
+                CHECK(stats.bruteForcePoints >= 6);
+                CHECK(stats.finerPoints >= 2000);
+                CHECK(stats.gridPoints >= 7000);
+            }
+            if (name == "coincident 50") { // no box to grid: brute force (50 <= 64 points)
+                CHECK_FALSE(stats.grid);
+                CHECK(stats.bruteForcePoints == 50);
+            }
+            if (name == "collinear 500") { // no area: the tree answers all 500
+                CHECK_FALSE(stats.grid);
+                CHECK(stats.treePoints == 500);
+            }
+        }
+    }
+    // Brute force on a small set, to tie both to the definition, and n <= k.
+    const std::vector<glm::vec3> small = boxSurfacePoints(600, 10u);
+    const std::vector<float> grid = neighbourDistancesSquared(small, 3);
+    int mismatches = 0;
+    for (std::size_t i = 0; i < small.size(); ++i) {
+        std::uint32_t indices[4];
+        float distances[4];
+        bruteForceNearest(small, small[i], 4, indices, distances);
+        if (grid[i] != distances[3]) ++mismatches;
+    }
+    CHECK(mismatches == 0);
+    CHECK(std::isinf(neighbourDistancesSquared(std::vector<glm::vec3>(3, glm::vec3(0.0f)), 3)[0]));
+    CHECK(neighbourDistancesSquared({}, 1).empty());
+}
+
+TEST_CASE("kNN timing: the grid against the kd-tree for SMCIR's 16 I raw candidates (printed)", "[knn][timing]")
+{
+    // Not a timed test (the numbers go to stdout; #23 part 7 asked for <= 3 ms at I = 2048).
+    const std::vector<glm::vec3> points = boxSurfacePoints(32768, 12u);
+    for (std::size_t k : {1, 2}) {
+        double treeMs = 1e30, gridMs = 1e30; // best of 5, each against the same input
+        std::vector<float> tree, grid;
+        NeighbourSearch search; // kept between calls, as the sampler keeps it between frames
+        for (int rep = 0; rep < 5; ++rep) {
+            auto start = std::chrono::steady_clock::now();
+            tree = KNNIndex(points).neighbourDistancesSquared(k);
+            treeMs = std::min(treeMs, millisecondsSince(start));
+            start = std::chrono::steady_clock::now();
+            grid = search.distancesSquared(points, k);
+            gridMs = std::min(gridMs, millisecondsSince(start));
+        }
+        std::printf("kNN 32768 wall points, k-th other, k = %zu: kd-tree build + queries %.2f ms, grid %.2f ms (%.1fx),"
+                    " best of 5\n",
+                    k, treeMs, gridMs, treeMs / gridMs);
+        CHECK(grid == tree);
     }
 }
