@@ -424,11 +424,12 @@ const std::vector<float>& NeighbourSearch::search(const std::vector<glm::vec3>& 
     for (std::size_t i = 0; i < n; ++i)
         if (mState[i] != kAnswered) mRest.push_back(static_cast<std::uint32_t>(i));
     s.gridPoints = n - mRest.size();
-    (mRest.size() <= kMaxBruteForce ? s.bruteForcePoints : s.treePoints) = mRest.size();
-    if (!mRest.empty() && mRest.size() <= kMaxBruteForce) {
+    const bool bruteForce = mRest.size() <= kMaxBruteForce && m <= kMaxK + 1; // Smallest<0> holds kMaxK + 1
+    (bruteForce ? s.bruteForcePoints : s.treePoints) = mRest.size();
+    if (!mRest.empty() && bruteForce) {
         // A handful left (outliers, isolated points): every distance, cheaper than building the
         // tree over all n points. The same float operations, so the same k-th value.
-        auto bruteForce = [&](auto fixedM) {
+        auto scanAll = [&](auto fixedM) {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mRest.size(), 4), [&](const tbb::blocked_range<std::size_t>& r) {
                 for (std::size_t i = r.begin(); i < r.end(); ++i) {
                     const glm::vec3 q = points[mRest[i]];
@@ -438,8 +439,8 @@ const std::vector<float>& NeighbourSearch::search(const std::vector<glm::vec3>& 
                 }
             });
         };
-        if (m == 2) bruteForce(std::integral_constant<std::size_t, 2>{});
-        else bruteForce(std::integral_constant<std::size_t, 0>{});
+        if (m == 2) scanAll(std::integral_constant<std::size_t, 2>{});
+        else scanAll(std::integral_constant<std::size_t, 0>{});
     } else if (!mRest.empty()) {
         const KNNIndex index(points);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mRest.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {

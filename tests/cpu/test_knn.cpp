@@ -283,6 +283,14 @@ TEST_CASE("kNN grid: every point's k-th neighbour distance equals the kd-tree's 
     }
     CHECK(mismatches == 0);
     CHECK(std::isinf(neighbourDistancesSquared(std::vector<glm::vec3>(3, glm::vec3(0.0f)), 3)[0]));
+    // Large k: within the fixed arrays (k = 63 on 64 points), and beyond them (kMaxK = 63; SMCIR
+    // allows k = 64): the tree.
+    const std::vector<glm::vec3> few = randomPoints(64, 13u, glm::vec3(1.0f));
+    NeighbourSearchStats large;
+    CHECK(neighbourDistancesSquared(few, 63, &large) == KNNIndex(few).neighbourDistancesSquared(63));
+    const std::vector<glm::vec3> more = randomPoints(100, 14u, glm::vec3(1.0f));
+    CHECK(neighbourDistancesSquared(more, 64, &large) == KNNIndex(more).neighbourDistancesSquared(64));
+    CHECK(large.treePoints == 100);
     CHECK(neighbourDistancesSquared({}, 1).empty());
 }
 
