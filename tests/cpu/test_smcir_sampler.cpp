@@ -615,9 +615,12 @@ TEST_CASE("smcir converges in a static scene: intensities even out, then stay ev
     // after 30, 2.98 over frames 31-60 on an AVX2 AMD EPYC; 3.31, 3.87, 3.34 where Embree took
     // another code path: one trajectory, which moves with the CPU): no check on it across the
     // first 30 frames. Robust sd(log I) measured 2.22, 0.49, worst of 31-60 0.47; moved 3.4 a frame.
+    // On an AVX-512 EPYC (Embree's wider code path, the kd-tree and the grid kNN alike): 2.08, 0.49,
+    // worst 0.53, i.e. worst / after-30 from 0.96 to 1.07 over the two trajectories; the bound 1.25 is
+    // about 3x that spread above 1, and a set whose bulk spread regrew (2.1 at frame 1) still fails.
     CHECK(thirtyLog < 0.6 * firstLog);
     CHECK(laterCoV < thirtyCoV);
-    CHECK(worstLog < 1.05 * thirtyLog);
+    CHECK(worstLog < 1.25 * thirtyLog);
     CHECK(moved < 0.25 * SMCIRParams{}.maxMoves); // few strong candidates left: the set settles
 }
 
