@@ -226,26 +226,30 @@ const std::vector<float>& NeighbourSearch::search(const std::vector<glm::vec3>& 
         allUpper = glm::max(allUpper, p);
     }
     // The grid's box: the 0.5% and 99.5% quantiles of a strided sample of up to 4096 points, widened
-    // by a quarter of their range each side, within the points' box. Outliers (a far hill seen
-    // through a window) would otherwise stretch the box and crowd the rest into a few cells; the
-    // tree answers them.
+    // each side by a quarter of the widest axis's range (not the axis's own: on a flat ground with a
+    // few objects the vertical range is 0, and every object point would be an outlier), within the
+    // points' box. Outliers (a far hill seen through a window) would otherwise stretch the box and
+    // crowd the rest into a few cells; brute force or the tree answers them.
     mLower = allLower;
     mUpper = allUpper;
     if (finite) {
         const std::size_t stride = std::max<std::size_t>(1, n / 4096);
         std::vector<float> sample;
         sample.reserve(n / stride + 1);
+        glm::vec3 low(0.0f), high(0.0f);
         for (int a = 0; a < 3; ++a) {
             sample.clear();
             for (std::size_t i = 0; i < n; i += stride) sample.push_back(points[i][a]);
             const std::size_t cut = sample.size() / 200;
             std::nth_element(sample.begin(), sample.begin() + static_cast<std::ptrdiff_t>(cut), sample.end());
-            const float low = sample[cut];
+            low[a] = sample[cut];
             std::nth_element(sample.begin(), sample.end() - 1 - static_cast<std::ptrdiff_t>(cut), sample.end());
-            const float high = sample[sample.size() - 1 - cut];
-            mLower[a] = std::max(allLower[a], low - 0.25f * (high - low));
-            mUpper[a] = std::min(allUpper[a], high + 0.25f * (high - low));
+            high[a] = sample[sample.size() - 1 - cut];
         }
+        const glm::vec3 range = high - low;
+        const float pad = 0.25f * glm::max(range.x, glm::max(range.y, range.z));
+        mLower = glm::max(allLower, low - pad);
+        mUpper = glm::min(allUpper, high + pad);
     }
     const glm::bvec3 openLow = glm::greaterThan(mLower, allLower), openHigh = glm::lessThan(mUpper, allUpper);
     const glm::vec3 extent = mUpper - mLower;
