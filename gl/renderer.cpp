@@ -205,7 +205,8 @@ void Renderer::bindDisplayView()
     const auto frameView = std::find(frameViews.begin(), frameViews.end(), mParams.display);
     if (frameView != frameViews.end()) {
         glProgramUniform1i(program, shared::kLocationDisplayView, static_cast<int>(frameView - frameViews.begin()));
-        glBindTextureUnit(shared::kUnitDisplayView, 0);
+        if (!mNoDisplayView) mNoDisplayView = gl::Texture::placeholder("no display view", GL_TEXTURE_2D_ARRAY, GL_RGBA8);
+        glBindTextureUnit(shared::kUnitDisplayView, mNoDisplayView.id());
         return;
     }
     const std::vector<DebugView> views = debugViews();

@@ -109,6 +109,7 @@ private:
     gl::RenderTarget mOutput;         // colour 0 display RGBA8 (sRGB bytes), colour 1 radiance RGBA32F
     gl::RenderTarget mInset;          // the same for renderInset()
     gl::Texture mDisplayView;         // texture view of what renderer.display shows (re-made each frame)
+    gl::Texture mNoDisplayView;       // bound to the view's unit while the display shows a frame image
     gl::Buffer mFrameUniforms;
     gl::Buffer mPointEmitters;
     gl::Buffer mDirectionalEmitters;

@@ -80,6 +80,20 @@ Texture Texture::makeView(const std::string& name, const Texture& source, GLenum
     return view;
 }
 
+Texture Texture::placeholder(const std::string& name, GLenum target, GLenum format)
+{
+    TextureDesc desc;
+    desc.target = target;
+    desc.format = format;
+    desc.layers = target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1;
+    Texture texture(name, desc);
+    const bool depth = format == GL_DEPTH_COMPONENT32F || format == GL_DEPTH_COMPONENT24 ||
+                       format == GL_DEPTH_COMPONENT16;
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(texture.id(), 0, depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, zero);
+    return texture;
+}
+
 Sampler::Sampler(const std::string& name, const SamplerDesc& desc)
 {
     glCreateSamplers(1, &mId);

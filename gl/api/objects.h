@@ -79,6 +79,10 @@ public:
     // as `target` (e.g. a cube-map array's faces as a 2D array), same format; nearest filtering.
     static Texture makeView(const std::string& name, const Texture& source, GLenum target, int level, int firstLayer,
                             int layers);
+    // A 1x1 texture of `target` (one cube, six layers, for cube-map arrays) cleared to zero, bound where
+    // a program declares a sampler that this draw does not read: GL's texture 0 there has no levels, and
+    // NVIDIA's driver reports every such draw (seen on an H200, docs/conformance.md "scripts/gpu-bench").
+    static Texture placeholder(const std::string& name, GLenum target, GLenum format);
     const TextureDesc& desc() const { return mDesc; }
     int width() const { return mDesc.width; }
     int height() const { return mDesc.height; }

@@ -42,6 +42,8 @@ ShadowPass::ShadowPass(const gl::ShaderLoader& shaders)
     desc.minFilter = GL_NEAREST;
     desc.magFilter = GL_NEAREST;
     mSampler = gl::Sampler("shadow sampler", desc);
+    mNoPoint = gl::Texture::placeholder("no point shadows", GL_TEXTURE_CUBE_MAP_ARRAY, GL_DEPTH_COMPONENT32F);
+    mNoDirectional = gl::Texture::placeholder("no directional shadows", GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F);
     gl::RenderTargetDesc cubes;
     cubes.depthFormat = GL_DEPTH_COMPONENT32F;
     cubes.textureTarget = GL_TEXTURE_CUBE_MAP_ARRAY;
@@ -162,9 +164,9 @@ std::vector<DebugView> ShadowPass::debugViews() const
 
 void ShadowPass::bindForReading() const
 {
-    // Unused units still get a valid texture of the right type: bind 0 only when absent.
-    glBindTextureUnit(shared::kUnitPointShadows, mCubes ? mCubes.depth().id() : 0);
-    glBindTextureUnit(shared::kUnitDirectionalShadows, mDirectional ? mDirectional.depth().id() : 0);
+    // Units of an absent kind get a placeholder of the right type, never texture 0 (gl::Texture::placeholder).
+    glBindTextureUnit(shared::kUnitPointShadows, mCubes ? mCubes.depth().id() : mNoPoint.id());
+    glBindTextureUnit(shared::kUnitDirectionalShadows, mDirectional ? mDirectional.depth().id() : mNoDirectional.id());
     glBindSampler(shared::kUnitPointShadows, mSampler.id());
     glBindSampler(shared::kUnitDirectionalShadows, mSampler.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());

@@ -57,6 +57,8 @@ private:
     gl::Buffer mDirectionalMatrices;
     gl::Buffer mEmitters;
     gl::Sampler mSampler;
+    gl::Texture mNoPoint;          // placeholders bound where a scene has no emitter of the kind
+    gl::Texture mNoDirectional;
     float mFar = 1.0f;
     std::vector<glm::vec3> mRenderedPositions; // emitter positions the cubes were rendered for
     int mLastRenderedCubes = 0;

@@ -150,6 +150,8 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uLevels", mipLevelCount(grid));
         generate.set("uLevel", viewLevel);
         generate.set("uSmoothness", mParams.smoothness);
+        if (!mNoImportance) mNoImportance = gl::Texture::placeholder("no importance", GL_TEXTURE_2D, GL_R32F);
+        glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), mNoImportance.id());
         mGeneratePass.dispatch(mViewLightCount, 1, NextRead::StorageBuffer);
 
         // 2. Importance of every RSM texel (MATH.md 10.1), layers side by side.

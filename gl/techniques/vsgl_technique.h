@@ -123,6 +123,7 @@ private:
     gl::Sampler mTrilinear;
     gl::RenderTarget mViewRSM;   // the G-buffer grid in the RSM layout, with mips
     gl::Texture mImportance;     // R32F, (rsm.size x layers) x rsm.size
+    gl::Texture mNoImportance;   // bound to the importance unit while the view lights are made (they read none)
     gl::Buffer mViewLights;      // VSGLight[(viewGrid >> viewLevel)^2]
     gl::Buffer mLights;          // VSGLight[N]
     gl::RenderTarget mShaded;    // radiance, cancelled fraction
