@@ -19,6 +19,12 @@ void ensureGLContext()
     context->makeCurrent();
 }
 
+bool onHardwareGPU()
+{
+    ensureGLContext();
+    return !gl::isSoftwareRenderer();
+}
+
 const gl::ShaderLoader& shaders()
 {
     static gl::ShaderLoader loader(std::string(VPLGI_SOURCE_DIR) + "/glsl");

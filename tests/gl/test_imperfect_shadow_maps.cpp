@@ -610,7 +610,9 @@ TEST_CASE("ISM: pull-push fills holes as its CPU twin does", "[gl][ism]")
     std::printf("ISM pull-push vs CPU twin (5 maps of 16^2, 4 levels): largest difference %.3g m\n",
                 static_cast<double>(largest));
     CHECK(changedValid == 0); // valid texels keep their bits
-    CHECK(largest <= 0.0f);   // measured 0: the same operations in the same order
+    // Measured 0 on llvmpipe: the same operations in the same order; 4.8e-7 m on an H200 (fused
+    // multiply-adds; test::twinTolerance).
+    CHECK(largest <= test::twinTolerance(0.0f, 1.5e-6f));
     // Closed forms: a constant map stays that constant everywhere (every average of equal values
     // with these weights is exact); an empty map stays empty; one valid texel fills the whole map;
     // the hole on the depth edge takes the foreground's 1 m on both sides of the edge, not a blend.

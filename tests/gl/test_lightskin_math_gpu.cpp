@@ -291,7 +291,9 @@ TEST_CASE("the LightSkin maths give the same values in GLSL and C++", "[gl][ligh
     // rest, all cases: a receiver cosine of 1.4e-4 whose ~7e-9 absolute difference is 5e-5
     // relative), 5.2e-5 (Phong lobes: llvmpipe's pow is exp2(k log2 c), whose error grows with k up
     // to 200 here) and 8.3e-6 (overlap). Tolerances are 2.5-3x those; a formula slip shows up as O(1).
-    CHECK(restConditioned < 3e-6);
+    // On an H200 (test::twinTolerance): 1.04e-4 for the rest with cosines > 0.05 (its approximate
+    // transcendentals), the other two within their llvmpipe bounds.
+    CHECK(restConditioned < test::twinTolerance(3e-6, 3e-4));
     CHECK(restAll < 1.5e-4);
     CHECK(phong < 1.5e-4);
     CHECK(worst[1][kOverlap] < 2.5e-5);

@@ -206,6 +206,7 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
     int coverageMismatches = 0;
     int covered = 0;
     double worstPosition = 0.0;
+    double worstPositionPerTexel = 0.0; // the error over the texel's world footprint (next texel's distance)
     double worstFlux = 0.0;
     double gpuSum = 0.0;
     double cpuSum = 0.0;
@@ -229,14 +230,21 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
         }
         if (!gpuCovered) continue;
         ++covered;
-        worstPosition = std::max(
-            worstPosition, static_cast<double>(glm::length(glm::vec3(gpu[shared::kRSMPosition][k]) - cpu[k].position)));
+        const double error = glm::length(glm::vec3(gpu[shared::kRSMPosition][k]) - cpu[k].position);
+        worstPosition = std::max(worstPosition, error);
+        double footprint = 0.0;
+        const std::size_t right = k % static_cast<std::size_t>(size) + 1 < static_cast<std::size_t>(size) ? k + 1 : k - 1;
+        const std::size_t down = k + static_cast<std::size_t>(size) < cpu.size() ? k + size : k - size;
+        for (std::size_t n : {right, down})
+            if (cpu[n].covered) footprint = std::max(footprint, static_cast<double>(glm::length(cpu[n].position - cpu[k].position)));
+        if (footprint > 0.0) worstPositionPerTexel = std::max(worstPositionPerTexel, error / footprint);
         worstFlux = std::max(worstFlux, std::abs(gpu[shared::kRSMFlux][k].r - cpu[k].flux) / fluxScale);
         // The flux is incident (before reflection); the albedo is in the diffuse attachment.
         CHECK(gpu[shared::kRSMDiffuse][k].r == Approx(rho).epsilon(1e-6));
     }
     MEASURED(what << ": " << covered << " covered texels, " << coverageMismatches
-                  << " coverage mismatches, worst position error " << worstPosition << " m, worst flux error "
+                  << " coverage mismatches, worst position error " << worstPosition << " m ("
+                  << worstPositionPerTexel << " of a texel's footprint), worst flux error "
                   << worstFlux << " of the largest texel flux, flux sum GPU " << gpuSum << " CPU " << cpuSum);
     // Measured 0 (spot: the plane fills the view; directional: no centre on an edge). Only texel
     // centres on the rectangle's edge may rasterise differently; allow two.
@@ -244,14 +252,21 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
     CHECK(covered >= minCovered);
     // Measured 3.8e-7 (spot), 3.6e-7 m (directional) and 1.2e-6 m (the emissive quad's sources, on
     // the face that reaches 4 m): float interpolation of world positions vs double rays; 3e-6 m is
-    // 2.5x the largest.
-    CHECK(worstPosition < 3e-6);
+    // 2.5x the largest. A hardware GPU interpolates at vertices snapped to its sub-pixel grid, an
+    // error that scales with the texel's footprint (up to 9.4e-4 m on the emissive quad's grazing
+    // face on an H200): there the bound is on the error over the footprint, measured at most 2.1e-3
+    // of it on an H200 (the same face; test::twinTolerance).
+    if (test::onHardwareGPU())
+        CHECK(worstPositionPerTexel < 6e-3);
+    else
+        CHECK(worstPosition < 3e-6);
     // Measured 3.6e-6 (spot: the direction from the interpolated position through the steep cone
-    // falloff) and 0 (directional: constant) of the largest texel flux; 1e-5 is 2.8x.
-    CHECK(worstFlux < 1e-5);
-    // Measured below 1e-6 relative (float sums of 16k terms); 1e-5 leaves room for the order. An
-    // edge texel covered on one side only moves the sums apart by its flux.
-    CHECK(std::abs(gpuSum - cpuSum) <= 1e-5 * cpuSum + mismatchedFlux);
+    // falloff) and 0 (directional: constant) of the largest texel flux; 1e-5 is 2.8x. On an H200 the
+    // positions' error carries into it: up to 1.2e-4 (the grazing face).
+    CHECK(worstFlux < test::twinTolerance(1e-5, 3e-4));
+    // Measured below 1e-6 relative (float sums of 16k terms); 1e-5 leaves room for the order (H200:
+    // 1.4e-5). An edge texel covered on one side only moves the sums apart by its flux.
+    CHECK(std::abs(gpuSum - cpuSum) <= test::twinTolerance(1e-5, 4e-5) * cpuSum + mismatchedFlux);
     return gpuSum;
 }
 

@@ -186,7 +186,12 @@ TEST_CASE("the SG / VSGL maths give the same values in GLSL and C++", "[gl][sg]"
     // see test_brdf.cpp) and sharp SGs, where an ulp of difference in a cosine (llvmpipe's sqrt,
     // exp and division against libm's) is multiplied by the sharpness. Tolerances are 2.5-3x those;
     // a formula slip shows up as O(1).
-    const double tolerances[kResultsPerCase] = {6e-5, 1.5e-4, 1.5e-4, 1e-5, 1.5e-4, 1e-6, 6e-5};
+    // On an H200 (test::twinTolerance): 2.5e-5, 9e-5, 9e-5, 1.5e-5, 2.6e-5, 5.7e-7, 7.8e-5.
+    const double software[kResultsPerCase] = {6e-5, 1.5e-4, 1.5e-4, 1e-5, 1.5e-4, 1e-6, 6e-5};
+    const double hardware[kResultsPerCase] = {6e-5, 2.5e-4, 2.5e-4, 4e-5, 1.5e-4, 1.5e-6, 2e-4};
+    double tolerances[kResultsPerCase];
+    for (int row = 0; row < kResultsPerCase; ++row)
+        tolerances[row] = test::twinTolerance(software[row], hardware[row]);
     for (int row = 0; row < kResultsPerCase; ++row) {
         INFO("output row " << row);
         CHECK(worst[row] < tolerances[row]);

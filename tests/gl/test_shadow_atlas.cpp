@@ -123,8 +123,13 @@ std::vector<std::uint32_t> allSlots(int slots)
 // atlas clips them to the tile (new vertices) and sets up its depth planes at other window
 // positions, so window-space depths differ by float rounding in most covered texels. Measured on
 // llvmpipe: at most 5.6e-6 (72 tiles of 64^2, cornell; 2.7e-6 for 128^2 tiles). Coverage is
-// checked exactly: a texel empty (depth 1) in one must be empty in the other.
-constexpr float kDepthTolerance = 1.5e-5f;
+// checked exactly: a texel empty (depth 1) in one must be empty in the other. On an H200 (vertices
+// snapped to its sub-pixel grid at other window positions; test::twinTolerance): at most 6.4e-4
+// (64^2 tiles), 1.1e-4 (32^2) and 2.3e-4 (128^2), on steep depth slopes.
+float depthTolerance()
+{
+    return test::twinTolerance(1.5e-5f, 1.6e-3f);
+}
 
 struct TileDifference {
     int texels = 0;       // texels whose depths differ at all
@@ -233,7 +238,7 @@ TEST_CASE("shadow atlas: every tile holds the depths of its view rendered alone"
     }
     CHECK(wrongTiles == 0);
     CHECK(wrongDepths == 0);
-    CHECK(worst.largest <= kDepthTolerance);
+    CHECK(worst.largest <= depthTolerance());
     CHECK(worst.coverage == 0);
     gl::checkDebugMessages();
 }
@@ -300,7 +305,7 @@ TEST_CASE("shadow atlas: renderDirty of a subset leaves the other tiles bit-iden
     std::printf(
         "shadow atlas subset update vs alone (15 tiles of 32^2): at most %d texels of a tile differ, by at most %.3g\n",
         worst.texels, static_cast<double>(worst.largest));
-    CHECK(worst.largest <= kDepthTolerance);
+    CHECK(worst.largest <= depthTolerance());
     CHECK(worst.coverage == 0);
     gl::checkDebugMessages();
 }
@@ -396,7 +401,7 @@ TEST_CASE("shadow atlas: layouts at the capacity limits, and errors that name th
     std::printf(
         "shadow atlas of 8192 maps vs alone (4 tiles of 128^2): at most %d texels of a tile differ, by at most %.3g\n",
         worst.texels, static_cast<double>(worst.largest));
-    CHECK(worst.largest <= kDepthTolerance);
+    CHECK(worst.largest <= depthTolerance());
     CHECK(worst.coverage == 0);
     ShadowAtlasParams impossible;
     impossible.tileSize = 4096;
