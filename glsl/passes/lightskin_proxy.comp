@@ -21,6 +21,7 @@
 #include "../shared/importance.h"
 #include "../shared/lightskin.h"
 #include "../shared/lightskin_gpu.h"
+#include "../shared/normals.h"
 #include "../shared/rsm.h"
 #include "../shared/tonemap.h"
 #include "../lib/frame.glsl"
@@ -78,20 +79,32 @@ void main()
         }
         vec4 normalCoverage = texelFetch(uSource[kRSMNormal], texel, 0);
         if (normalCoverage.w == 0.0) continue;
-        vec3 flux = texelFetch(uSource[kRSMFlux], texel, 0).rgb * texelFetch(uSource[kRSMDiffuse], texel, 0).rgb;
+        vec4 fluxTexel = texelFetch(uSource[kRSMFlux], texel, 0);
+        vec4 diffuseTexel = texelFetch(uSource[kRSMDiffuse], texel, 0);
+        vec3 flux = fluxTexel.rgb * diffuseTexel.rgb;
         if (flux == vec3(0.0)) continue;
         vec3 xl = texelFetch(uSource[kRSMPosition], texel, 0).xyz;
-        vec3 nl = normalize(normalCoverage.xyz);
+        // The VAL's cosines as the one-bounce path tracer has them (not in the paper; issue "Every
+        // light type in the RSM techniques", part 2; glsl/shared/sg.h, vplRadiance, derives them):
+        // the RSM's flux crossed the texel's triangle, of geometric normal n_g (level 0: flux.w,
+        // diffuse.w), so the surface's irradiance takes cos_s(in) / cos_g(in) of it, n_s the shading
+        // normal; the footprint's exit cosine and tilt are n_g's. Without normal maps n_s = n_g.
+        vec3 ns = normalize(normalCoverage.xyz);
+        vec3 nl = octDecode(vec2(fluxTexel.w, diffuseTexel.w));
         RSMLayerView layer = views[texel.z];
         bool orthographic = layer.info.y != 0.0;
+        vec4 light = layerLights[texel.z].positionKind;
+        vec3 ray = orthographic ? normalize(light.xyz) : normalize(xl - light.xyz);
+        float cosGeometricIn = dot(nl, -ray);
+        if (!(cosGeometricIn > 1e-3)) continue;
+        flux *= max(dot(ns, -ray), 0.0) / cosGeometricIn;
+        if (flux == vec3(0.0)) continue;
         float depth = dot(layer.depthRow, vec4(xl, 1.0));
         float area = lightskinValArea(depth, layer.info.x, orthographic);
         if (uExactArea != 0) {
             // MATH.md 9.1: the texel's ray from the light, its cosine to the view axis and to the surface.
-            vec4 light = layerLights[texel.z].positionKind;
-            vec3 ray = orthographic ? normalize(light.xyz) : normalize(xl - light.xyz);
             float cosAxis = orthographic ? 1.0 : depth / max(distance(xl, light.xyz), 1e-6);
-            area = lightskinValAreaTilted(area, cosAxis, dot(nl, -ray));
+            area = lightskinValAreaTilted(area, cosAxis, cosGeometricIn);
         }
         vec3 v = xl - cp;
         float d2 = dot(v, v);

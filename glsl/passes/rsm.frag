@@ -6,6 +6,7 @@
 #include "../shared/rsm.h"
 #include "../shared/bindings.h"
 #include "../shared/sg.h"
+#include "../shared/normals.h"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -50,6 +51,13 @@ void main()
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
     if (uTextures.y != 0 && !gl_FrontFacing) n = -n;
+    // The triangle's plane (as passes/gbuffer.frag: screen-space derivatives, on the shading normal's
+    // side), for the VPLs' cosines (sg.h, vplRadiance). Level 0 only: the mips average its encoding.
+    vec3 geometric = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
+    float length2 = dot(geometric, geometric);
+    geometric = length2 > 0.0 ? geometric * inversesqrt(length2) : n;
+    if (dot(geometric, n) < 0.0) geometric = -geometric;
+    vec2 geometricOct = octEncode(geometric);
 
     vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);
     vec4 mr = texture(uMetallicRoughnessTexture, vTexcoord);
@@ -89,8 +97,8 @@ void main()
 
     outPosition = vec4(vWorldPosition, dot(vWorldPosition, vWorldPosition));
     outNormal = vec4(n, 1.0);
-    outFlux = vec4(incident, 0.0);
-    outDiffuse = vec4(diffuse, 0.0);
+    outFlux = vec4(incident, geometricOct.x);
+    outDiffuse = vec4(diffuse, geometricOct.y);
     outSpecular = vec4(f0, roughness);
     outLobe = vec4(toksvigEncode(lobe.axis, lobe.sharpness), lobe.integral);
 }

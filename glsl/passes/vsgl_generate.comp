@@ -29,6 +29,7 @@
 #include "shared/importance.h"
 #include "shared/rsm.h"
 #include "shared/sg.h"
+#include "shared/normals.h"
 
 layout(local_size_x = 64) in;
 
@@ -62,6 +63,7 @@ void main()
     light.diffuse = vec4(0.0);
     light.specular = vec4(0.0);
     light.lobe = vec4(0.0, 0.0, 1.0, 0.0);
+    light.geometric = vec4(0.0);
 
     ivec3 texel;
     float level = 0.0;
@@ -130,11 +132,14 @@ void main()
     // strong, and inf * 0 poisons every pixel it reaches with NaN. It is dropped (left invalid).
     if (any(isnan(light.flux.rgb)) || any(isinf(light.flux.rgb)) || any(isnan(light.positionRadius2)) ||
         any(isinf(light.positionRadius2))) {
-        lights[i] = VSGLight(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0, 0.0, 1.0, 0.0));
+        lights[i] = VSGLight(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.0));
         return;
     }
     light.diffuse = vec4(diffuse.rgb, specular.w);
     light.specular = vec4(specular.rgb, lobe.w);
     light.lobe = vec4(axis, sharpness);
+    // A VPL (level 0) carries its triangle's normal from the RSM (flux.w, diffuse.w); a filtered
+    // footprint has no single triangle: its mean normal.
+    light.geometric = vec4(uMode == 1 ? octDecode(vec2(flux.w, diffuse.w)) : light.normalValid.xyz, 0.0);
     lights[i] = light;
 }

@@ -9,8 +9,8 @@ VPLGI_SHARED_BEGIN
 // Attachments (colour location = index = image-unit offset in the downsample kernel).
 VPLGI_CONST int kRSMPosition = 0; // xyz world position [m], w = its squared norm |x|^2 [m^2] (VSGL 3.2)
 VPLGI_CONST int kRSMNormal = 1;   // xyz normal (mips: weighted mean, not renormalised), w = coverage
-VPLGI_CONST int kRSMFlux = 2;     // rgb incident flux of the texel [W] (MATH.md 1.5), w = 0
-VPLGI_CONST int kRSMDiffuse = 3;  // rgb diffuse reflectance (1 - metallic) baseColor, w = 0
+VPLGI_CONST int kRSMFlux = 2;     // rgb incident flux of the texel [W] (MATH.md 1.5), w octahedral x of n_g (level 0)
+VPLGI_CONST int kRSMDiffuse = 3;  // rgb diffuse reflectance (1 - metallic) baseColor, w octahedral y of n_g (level 0)
 VPLGI_CONST int kRSMSpecular = 4; // rgb specular reflectance F0, w = perceptual roughness
 VPLGI_CONST int kRSMLobe = 5;     // xyz specular lobe as Toksvig vector (eta/(1+eta)) xi, w its integral factor
 VPLGI_CONST int kRSMAttachmentCount = 6;

@@ -315,13 +315,14 @@ VPLGI_FUNC float vsglMipLevel(float count, float probability, float smoothness, 
 
 // --- One VSGL (VSGL eq. 1-3, section 3.3) ---------------------------------------------------------
 
-struct VSGLight {         // std430, 6 x vec4 = 96 bytes
+struct VSGLight {         // std430, 7 x vec4 = 112 bytes
     vec4 positionRadius2; // xyz filtered position E[x] [m], w r_i^2 = 2 sigma^2 [m^2] (MATH 5.3), >= 0
     vec4 normalValid;     // xyz unit (renormalised) normal n_i, w 1 valid / 0 empty
     vec4 flux;            // rgb incident flux of the light Phi_i = Phi_bar_h / (N P_j) [W], w the RSM layer it came from
     vec4 diffuse;         // rgb diffuse reflectance rho_d (BRDF = rho_d/pi), w perceptual roughness
     vec4 specular;        // rgb F0, w = s: the specular lobe's integral factor (SpecularLobe.integral)
     vec4 lobe;            // xyz unit lobe axis xi (direction the reflected light leaves in), w SG sharpness eta
+    vec4 geometric;       // xyz the geometric normal n_g of a VPL's surface (the RSM texel's triangle; VSGLs: n_i), w 0
 };
 
 struct VSGLShadingPoint {
@@ -420,26 +421,36 @@ VPLGI_FUNC vec3 vsglRadiance(VSGLShadingPoint s, VSGLight l, float biasAlpha, VP
 }
 
 // Eq. (1): the light as a point light with exact glTF BRDFs at both ends: at s its own, at the
-// light diffuse = l.diffuse.rgb, F0 = l.specular.rgb, roughness = l.diffuse.w, normal n_i, seen
-// towards s and lit from `toLight` (unit, from the light sample towards the primary light).
+// light diffuse = l.diffuse.rgb, F0 = l.specular.rgb, roughness = l.diffuse.w, shading normal n_i,
+// seen towards s and lit from `toLight` (unit, from the light sample towards the primary light).
 // clampGeometry > 0 caps cos cos / d^2 at clampGeometry (MATH 1.2 (a)).
+// The cosines at the light's end as the one-bounce path tracer has them (not in the paper; issue
+// "Every light type in the RSM techniques", part 2): the RSM texel's flux I dw is what crosses its
+// triangle, so the irradiance of a point of it is Phi cos_s(in) / (cos_g(in) dA), n_g the geometric
+// normal; the path tracer reaches the texel's area dA from s by a direction, which brings the
+// geometric cosine of exit cos_g(out) / d^2. So L = Phi (cos_s(in) / cos_g(in)) f_x f_s cos_s(s)
+// cos_g(out) / d^2, where an RSM without normal maps has n_s = n_g and the usual Phi f f cos cos / d^2.
 VPLGI_FUNC vec3 vplRadiance(VSGLShadingPoint s, VSGLight l, vec3 toLight, float clampGeometry)
 {
     if (!(l.normalValid.w > 0.0f)) return vec3(0.0f);
     vec3 lightNormal = vec3(l.normalValid);
+    vec3 lightGeometric = vec3(l.geometric);
+    float cosGeometricIn = dot(lightGeometric, toLight);
+    if (!(cosGeometricIn > 1e-3f)) return vec3(0.0f);
+    float incidence = max(dot(lightNormal, toLight), 0.0f) / cosGeometricIn;
     vec3 toVPL = vec3(l.positionRadius2) - s.position;
-    float geometry = vplGeometryTerm(s.normal, lightNormal, toVPL, clampGeometry);
-    if (!(geometry > 0.0f)) return vec3(0.0f);
+    float geometry = vplGeometryTerm(s.normal, lightGeometric, toVPL, clampGeometry);
+    if (!(geometry > 0.0f) || !(incidence > 0.0f)) return vec3(0.0f);
     vec3 w = normalize(toVPL);
     vec3 receiverBRDF = evaluateBRDFCoefficients(s.diffuse, s.f0, s.roughness, s.normal, s.view, w);
     vec3 lightBRDF = evaluateBRDFCoefficients(vec3(l.diffuse), vec3(l.specular), l.diffuse.w, lightNormal, -w, toLight);
-    return vec3(l.flux) * receiverBRDF * lightBRDF * geometry;
+    return vec3(l.flux) * receiverBRDF * lightBRDF * (geometry * incidence);
 }
 
 VPLGI_SHARED_END
 
 #ifdef __cplusplus
-static_assert(sizeof(vplgi::shared::VSGLight) == 96, "VSGLight must match std430 (6 x vec4)");
+static_assert(sizeof(vplgi::shared::VSGLight) == 112, "VSGLight must match std430 (7 x vec4)");
 #endif
 
 #endif // VPLGI_SHARED_SG_H

@@ -22,6 +22,7 @@
 #include "gl_test_context.h"
 #include "glsl/shared/light_view.h"
 #include "glsl/shared/lights.h"
+#include "glsl/shared/normals.h"
 #include "glsl/shared/rsm.h"
 #include "measured.h"
 
@@ -208,6 +209,7 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
     double worstPosition = 0.0;
     double worstPositionPerTexel = 0.0; // the error over the texel's world footprint (next texel's distance)
     double worstFlux = 0.0;
+    double worstGeometric = 0.0; // |n_g - (0, 1, 0)|: the triangle's normal in flux.w, diffuse.w (rsm.h)
     double gpuSum = 0.0;
     double cpuSum = 0.0;
     double fluxScale = 0.0;
@@ -239,13 +241,17 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
             if (cpu[n].covered) footprint = std::max(footprint, static_cast<double>(glm::length(cpu[n].position - cpu[k].position)));
         if (footprint > 0.0) worstPositionPerTexel = std::max(worstPositionPerTexel, error / footprint);
         worstFlux = std::max(worstFlux, std::abs(gpu[shared::kRSMFlux][k].r - cpu[k].flux) / fluxScale);
+        const glm::vec3 geometric =
+            shared::octDecode(glm::vec2(gpu[shared::kRSMFlux][k].w, gpu[shared::kRSMDiffuse][k].w));
+        worstGeometric = std::max(worstGeometric, static_cast<double>(glm::length(geometric - glm::vec3(0.0f, 1.0f, 0.0f))));
         // The flux is incident (before reflection); the albedo is in the diffuse attachment.
         CHECK(gpu[shared::kRSMDiffuse][k].r == Approx(rho).epsilon(1e-6));
     }
     MEASURED(what << ": " << covered << " covered texels, " << coverageMismatches
                   << " coverage mismatches, worst position error " << worstPosition << " m ("
                   << worstPositionPerTexel << " of a texel's footprint), worst flux error "
-                  << worstFlux << " of the largest texel flux, flux sum GPU " << gpuSum << " CPU " << cpuSum);
+                  << worstFlux << " of the largest texel flux, geometric normal off by " << worstGeometric
+                  << ", flux sum GPU " << gpuSum << " CPU " << cpuSum);
     // Measured 0 (spot: the plane fills the view; directional: no centre on an edge). Only texel
     // centres on the rectangle's edge may rasterise differently; allow two.
     CHECK(coverageMismatches <= 2);
@@ -264,6 +270,10 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
     // falloff) and 0 (directional: constant) of the largest texel flux; 1e-5 is 2.8x. On an H200 the
     // positions' error carries into it: up to 1.2e-4 (the grazing face).
     CHECK(worstFlux < test::twinTolerance(1e-5, 3e-4));
+    // The triangle's normal, from the position's screen-space derivatives: measured 0 on these
+    // axis-aligned planes (the cross product of axis-aligned derivatives is exact); a channel left 0
+    // decodes to (0, 0, 1), sqrt(2) off.
+    CHECK(worstGeometric < 1e-5);
     // Measured below 1e-6 relative (float sums of 16k terms); 1e-5 leaves room for the order (H200:
     // 1.4e-5). An edge texel covered on one side only moves the sums apart by its flux.
     CHECK(std::abs(gpuSum - cpuSum) <= test::twinTolerance(1e-5, 4e-5) * cpuSum + mismatchedFlux);

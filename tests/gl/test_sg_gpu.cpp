@@ -26,7 +26,7 @@ struct Case {
     VSGLight light;
     glm::vec4 toLightClamp, parameters;
 };
-static_assert(sizeof(Case) == 13 * 16, "Case must match std430 in sg_probe.comp");
+static_assert(sizeof(Case) == 14 * 16, "Case must match std430 in sg_probe.comp");
 
 VSGLShadingPoint shadingPoint(const Case& c)
 {
@@ -99,6 +99,7 @@ std::vector<Case> makeCases()
         const SpecularLobe lobe = ggxReflectionLobe(lightNormal, toPrimary, lightRoughness);
         c.light.positionRadius2 = glm::vec4(position + d * towards, ratio * ratio * d * d);
         c.light.normalValid = glm::vec4(lightNormal, 1.0f);
+        c.light.geometric = glm::vec4(lightNormal, 0.0f);
         c.light.flux = glm::vec4(2.0f * u(rng), 2.0f * u(rng), 2.0f * u(rng), 0.0f);
         c.light.diffuse = glm::vec4(u(rng), u(rng), u(rng), lightRoughness);
         c.light.specular = glm::vec4(i % 3 == 0 ? glm::vec3(0.0f) : glm::vec3(u(rng), u(rng), u(rng)), lobe.integral);
@@ -126,6 +127,7 @@ std::vector<Case> makeCases()
             break;
         case 6:
             c.light.normalValid = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+            c.light.geometric = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f);
             break;
         case 7:
             c.light.flux = glm::vec4(0.0f);
