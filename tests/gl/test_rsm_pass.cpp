@@ -272,8 +272,9 @@ double compareWithCPU(const Rendered& r, int layer, int size, float x0, float x1
     CHECK(worstFlux < test::twinTolerance(1e-5, 3e-4));
     // The triangle's normal, from the position's screen-space derivatives: measured 0 on these
     // axis-aligned planes (the cross product of axis-aligned derivatives is exact); a channel left 0
-    // decodes to (0, 0, 1), sqrt(2) off.
-    CHECK(worstGeometric < 1e-5);
+    // decodes to (0, 0, 1), sqrt(2) off. Not yet measured on a hardware GPU (its derivatives come
+    // from interpolated positions): there the bound is the G-buffer's normals test's 5e-3.
+    CHECK(worstGeometric < test::twinTolerance(1e-5, 5e-3));
     // Measured below 1e-6 relative (float sums of 16k terms); 1e-5 leaves room for the order (H200:
     // 1.4e-5). An edge texel covered on one side only moves the sums apart by its flux.
     CHECK(std::abs(gpuSum - cpuSum) <= test::twinTolerance(1e-5, 4e-5) * cpuSum + mismatchedFlux);
