@@ -56,6 +56,7 @@ Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const Re
       mIndirectTarget("indirect", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
       mOutput("output", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
       mInset("inset", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
+      mNoDisplayView(gl::Texture::placeholder("no display view", GL_TEXTURE_2D_ARRAY, GL_RGBA8)),
       mFrameUniforms("frame uniforms", sizeof(shared::FrameUniforms)),
       mTimer(gl::PassTimer::defaultMode())
 {
@@ -205,7 +206,6 @@ void Renderer::bindDisplayView()
     const auto frameView = std::find(frameViews.begin(), frameViews.end(), mParams.display);
     if (frameView != frameViews.end()) {
         glProgramUniform1i(program, shared::kLocationDisplayView, static_cast<int>(frameView - frameViews.begin()));
-        if (!mNoDisplayView) mNoDisplayView = gl::Texture::placeholder("no display view", GL_TEXTURE_2D_ARRAY, GL_RGBA8);
         glBindTextureUnit(shared::kUnitDisplayView, mNoDisplayView.id());
         return;
     }

@@ -58,6 +58,7 @@ void VSGLTechnique::createPasses(const gl::ShaderLoader& shaders)
     mSampler = std::make_unique<ImportanceSampler>(shaders, "BRSM sampler");
     mViewRSMPass = ComputePass(shaders, "G-buffer as light", "passes/vsgl_view_rsm.comp");
     mGeneratePass = ComputePass(shaders, mPointLights ? "VPL generation" : "VSGL generation", "passes/vsgl_generate.comp");
+    mNoImportance = gl::Texture::placeholder("no importance", GL_TEXTURE_2D, GL_R32F);
     mImportancePass = ComputePass(shaders, "BRSM importance", "passes/vsgl_importance.comp");
     mShading = std::make_unique<FullscreenPass>(shaders, "radiance estimation", "passes/vsgl_shading.frag");
 }
@@ -150,7 +151,6 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uLevels", mipLevelCount(grid));
         generate.set("uLevel", viewLevel);
         generate.set("uSmoothness", mParams.smoothness);
-        if (!mNoImportance) mNoImportance = gl::Texture::placeholder("no importance", GL_TEXTURE_2D, GL_R32F);
         glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), mNoImportance.id());
         mGeneratePass.dispatch(mViewLightCount, 1, NextRead::StorageBuffer);
 

@@ -4,6 +4,7 @@
 // Material evaluation matches core/scene/surface.cpp (surfaceAt) so CPU and GPU see the same surface.
 #include "../lib/frame.glsl"
 #include "../shared/normals.h"
+#include "../lib/geometric_normal.glsl"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -43,13 +44,8 @@ void main()
         n = -n;
         interpolated = -interpolated;
     }
-    // The triangle's plane from the screen-space derivatives of the position (one triangle per 2x2
-    // quad: helper invocations extend the same plane), on the shading normal's side as
-    // core/scene/surface.cpp keeps Embree's; a degenerate derivative falls back to the vertex normal.
-    vec3 geometric = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
-    float length2 = dot(geometric, geometric);
-    geometric = length2 > 0.0 ? geometric * inversesqrt(length2) : interpolated;
-    if (dot(geometric, n) < 0.0) geometric = -geometric;
+    // The triangle's plane, on the shading normal's side; a degenerate derivative: the vertex normal.
+    vec3 geometric = geometricNormal(vWorldPosition, n, interpolated);
 
     vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);
     vec4 mr = texture(uMetallicRoughnessTexture, vTexcoord);

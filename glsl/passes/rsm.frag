@@ -7,6 +7,7 @@
 #include "../shared/bindings.h"
 #include "../shared/sg.h"
 #include "../shared/normals.h"
+#include "../lib/geometric_normal.glsl"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -51,13 +52,9 @@ void main()
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
     if (uTextures.y != 0 && !gl_FrontFacing) n = -n;
-    // The triangle's plane (as passes/gbuffer.frag: screen-space derivatives, on the shading normal's
-    // side), for the VPLs' cosines (sg.h, vplRadiance). Level 0 only: the mips average its encoding.
-    vec3 geometric = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
-    float length2 = dot(geometric, geometric);
-    geometric = length2 > 0.0 ? geometric * inversesqrt(length2) : n;
-    if (dot(geometric, n) < 0.0) geometric = -geometric;
-    vec2 geometricOct = octEncode(geometric);
+    // The triangle's plane, for the VPLs' cosines (sg.h, vplRadiance). Level 0 only: the mips
+    // average its encoding.
+    vec2 geometricOct = octEncode(geometricNormal(vWorldPosition, n, n));
 
     vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);
     vec4 mr = texture(uMetallicRoughnessTexture, vTexcoord);
