@@ -12,8 +12,26 @@ namespace vplgi {
 ImportanceSampler::ImportanceSampler(const gl::ShaderLoader& shaders, std::string name)
     : mName(std::move(name)), mColumnPass(shaders, mName + ": column sums", "passes/importance_columns.comp"),
       mMarginalPass(shaders, mName + ": marginal sums", "passes/importance_marginal.comp"),
-      mSamplePass(shaders, mName + ": draws", "passes/importance_sample.comp")
+      mSamplePass(shaders, mName + ": draws", "passes/importance_sample.comp"),
+      mMipsPass(shaders, mName + ": box mips", "passes/importance_mips.comp")
 {
+}
+
+void ImportanceSampler::buildMips(const gl::Texture& importance, NextRead next, gl::PassTimer* timer) const
+{
+    const gl::TextureDesc& desc = importance.desc();
+    require(desc.format == GL_R32F && desc.target == GL_TEXTURE_2D,
+            mName + ": the importance map must be a GL_R32F 2D texture");
+    for (int level = 1; level < desc.levels; ++level) {
+        const int width = desc.width >> level, height = desc.height >> level;
+        require(width >= 1 && height >= 1 && desc.width == width << level && desc.height == height << level,
+                mName + ": box mips need sides that halve exactly at every level, not " +
+                    std::to_string(desc.width) + " x " + std::to_string(desc.height) + " with " +
+                    std::to_string(desc.levels) + " levels");
+        bindImage(shared::kImageImportance, importance, GL_READ_ONLY, level - 1);
+        bindImage(shared::kImageImportanceCoarser, importance, GL_WRITE_ONLY, level);
+        mMipsPass.dispatch(width, height, level + 1 < desc.levels ? NextRead::Image : next, timer);
+    }
 }
 
 void ImportanceSampler::build(const gl::Texture& importance, NextRead next, gl::PassTimer* timer)

@@ -43,6 +43,11 @@ public:
     void sample(const gl::Texture& importance, int count, std::uint32_t seed, NextRead next,
                 gl::PassTimer* timer = nullptr);
 
+    // Level l+1 of `importance` from level l, for every level of the texture: box means of 2x2 in a
+    // fixed order (passes/importance_mips.comp; every level halves both sides exactly), then the
+    // barrier for `next`. Writes to level 0 need the caller's barrier for image reads.
+    void buildMips(const gl::Texture& importance, NextRead next, gl::PassTimer* timer = nullptr) const;
+
     const gl::Buffer& columns() const { return mColumns; }   // float C(u, v) at v * W + u
     const gl::Buffer& marginal() const { return mMarginal; } // float R(u); R(W-1) is the total
     const gl::Buffer& samples() const { return mSamples; }   // shared::ImportanceSample[count]
@@ -52,6 +57,7 @@ private:
     ComputePass mColumnPass;
     ComputePass mMarginalPass;
     ComputePass mSamplePass;
+    ComputePass mMipsPass;
     gl::Buffer mColumns;
     gl::Buffer mMarginal;
     gl::Buffer mSamples;

@@ -22,14 +22,19 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLi
         v.choice(p + ".footprint", footprint, {"texel", "cell"},
                  "each light's mip level and flux: texel, the paper's reading (h = 1/2 log2(k / (N P_j)), flux "
                  "Phi_h / (N P_j)); cell (not in the paper): the coarsest mip cell with at most k expected draws, "
-                 "flux Phi_h / (N P_h) over the same footprint: no bias from footprints of varying size "
-                 "(docs/vsgl.md)");
+                 "flux Phi_cell / (N P_cell) of that cell: unbiased (docs/vsgl.md)");
+        v.field(p + ".maxLeaf", maxLeaf, 0, 12,
+                "cell footprints: the coarsest mip level a leaf may have, 2 = at most 4 x 4 RSM texels (not in "
+                "the paper; a cap keeps the partition, so the estimator stays unbiased; docs/vsgl.md); 12: no cap");
         v.field(p + ".biasAlpha", biasAlpha, 0.0f, 1e6f,
                 "alpha of the consistent bias reduction (section 3.3; Fig. 6: 0.001); 0 = keep the SG approximation");
     } else {
         v.field(p + ".clampGeometry", clampGeometry, 0.0f, 1e9f,
                 "cap on cos cos / d^2 [1/m^2] of the VPLs; 0 = unclamped (the paper's VPL figures)");
     }
+    v.choice(p + ".pdf", pdf, {"sg", "point"},
+             "PDF of BRSMs: sg, the VSGL paper's (each RSM texel lit by the view lights as VSGLs); point, the "
+             "original BRSM's point formula (MATH.md 10.1 with glTF BRDFs at both ends, the paper's Fig. 4a)");
     v.field(p + ".viewGrid", viewGrid, 2, 4096,
             "PDF of BRSMs: the G-buffer grid acting as the light [texels], a power of two (not in the paper)");
     v.field(p + ".viewLevel", viewLevel, 0, 12,
@@ -130,7 +135,15 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         gl::PassTimer::Scope scope(frame.timer, "PDF of BRSMs");
         // 1. The G-buffer as the light: a grid in the RSM layout, its mips, level L's texels as lights.
         const int grid = mParams.viewGrid;
-        const int viewLevel = std::min(mParams.viewLevel, mipLevelCount(grid) - 1);
+        int viewLevel = std::min(mParams.viewLevel, mipLevelCount(grid) - 1);
+        // Every RSM texel's importance loops over all view lights, which sit in one storage block:
+        // a grid too fine for either is read one level coarser until it fits, with one warning line
+        // (issue "VSGL made exact", part 4; viewGrid 4096 at level 0 would be 16.7M lights).
+        auto viewLightsAt = [&](int level) { return std::max(grid >> level, 1) * std::max(grid >> level, 1); };
+        const int allowedViewLights = gl::clampShaderLoopCount(
+            gl::clampStorageCount(viewLightsAt(viewLevel), sizeof(shared::VSGLight), prefix + " view lights"),
+            prefix + " view lights ((viewGrid / 2^viewLevel)^2, read at the first coarser level that fits)");
+        while (viewLightsAt(viewLevel) > allowedViewLights) ++viewLevel;
         mViewRSM.resize(grid, grid, 1);
         gbuffer.bindForReading();
         for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
@@ -139,7 +152,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         mViewRSMPass.program().set("uEye", frame.camera.position);
         mViewRSMPass.dispatch(grid, grid, NextRead::TextureFetch);
         downsampleRSMLayout(mRSM->downsampleKernel(), mViewRSM);
-        mViewLightCount = std::max(grid >> viewLevel, 1) * std::max(grid >> viewLevel, 1);
+        mViewLightCount = viewLightsAt(viewLevel);
         const auto viewBytes = static_cast<GLsizeiptr>(mViewLightCount) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
         if (mViewLights.size() < viewBytes) mViewLights = gl::Buffer("VSGL view lights", viewBytes);
         bindRSMLayout(mViewRSM, false);
@@ -169,6 +182,9 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         mImportancePass.program().set("uSize", size);
         mImportancePass.program().set("uLayers", layers);
         mImportancePass.program().set("uViewCount", mViewLightCount);
+        mImportancePass.program().set("uPointFormula", mParams.pdf == VSGLParams::Point ? 1 : 0);
+        mImportancePass.program().set("uEye", frame.camera.position);
+        mImportancePass.program().set("uClampGeometry", mPointLights ? mParams.clampGeometry : 0.0f);
         mImportancePass.dispatch(size * layers, size, NextRead::Image);
 
         // 3. The tables and N draws (MATH.md 9.7).
@@ -177,9 +193,9 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
                                                        : mParams.seed;
         mSampler->sample(mImportance, mCount, seed, NextRead::StorageBuffer);
         if (cells) {
-            // The cells' probabilities: 2x2 means up the chain (power-of-two layers: no cell straddles two).
-            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-            glGenerateTextureMipmap(mImportance.id());
+            // The cells' probabilities: 2x2 means up the chain, our own pass (power-of-two layers: no
+            // cell straddles two; issue "VSGL made exact", part 4).
+            mSampler->buildMips(mImportance, NextRead::TextureFetch);
         }
     }
     {
@@ -197,6 +213,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uLevel", 0);
         generate.set("uSmoothness", mParams.smoothness);
         generate.set("uFootprint", cells ? 1 : 0);
+        generate.set("uMaxLeaf", mParams.maxLeaf);
         generate.set("uLayers", layers);
         glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), mImportance.id());
         glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), mTrilinear.id());

@@ -45,8 +45,11 @@
 //
 // References
 // ----------
-//  papers/002 sections 3.1-3.3 and 4; MATH.md 4, 5, 10; Ritschel et al.: Interactive Global
-//  Illumination Based on Coherent Surface Shadow Maps (BRSM), 2011; Dachsbacher, Stamminger: RSMs.
+//  papers/002 sections 3.1-3.3 and 4; MATH.md 4, 5, 10; T. Ritschel, E. Eisemann, I. Ha, J. D. K. Kim,
+//  H.-P. Seidel: Making Imperfect Shadow Maps View-Adaptive: High-Quality Global Illumination in
+//  Large Dynamic Scenes, Computer Graphics Forum 30(8), 2011 (BRSMs and AISMs; the VSGL paper's
+//  [Ritschel et al. 2011]; not consulted, MATH.md 10.1; an earlier version of this comment named
+//  their 2008 coherent surface shadow maps paper instead); Dachsbacher, Stamminger: RSMs.
 #pragma once
 
 #include <cstdint>
@@ -72,7 +75,16 @@ struct VSGLParams {
     // reading; Cell (ours, not in the paper): the coarsest cell with at most k expected draws.
     enum Footprint { Texel, Cell };
     int footprint = Cell;
+    // Cell footprints: the coarsest leaf level, 2 = at most 4 x 4 RSM texels (not in the paper; 12:
+    // no cap). Without a cap, the leaves of unimportant regions grew to 128^2 texels of a 256^2 RSM
+    // and carried a sunlit roof's exact flux into the room below it (sealed room +28%); measured
+    // over 8 seeds in docs/vsgl.md, "Leaves capped".
+    int maxLeaf = 2;
     float clampGeometry = 0.0f; // vpl-brsm: cap on cos cos / d^2 [1/m^2]; 0 = none (the paper's VPL figures)
+    // The PDF of BRSMs (passes/vsgl_importance.comp): SG, the VSGL paper's (section 3: "in the same
+    // fashion as VSGLs"); Point, the original BRSM's point-to-point formula (MATH.md 10.1), Fig. 4a.
+    enum PDF { SG, Point };
+    int pdf = SG;
     int viewGrid = 64;          // the G-buffer grid of the PDF pass [texels], a power of two
     int viewLevel = 2;          // its mip level whose texels are the view lights ((64/4)^2 = 256)
     std::uint32_t seed = 1;     // the draws' uniforms

@@ -8,20 +8,17 @@
 //    - texel, the paper's reading: level h = 1/2 log2(k / (N P_j)) (5.2), flux Phi_h / (N P_j).
 //    - cell (not in the paper, our default): level h = the coarsest mip cell around j that holds
 //      at most k expected draws (N P_cell <= k; the paper's criterion on the cell's own probability),
-//      and flux Phi_h / (N P_h), P filtered over the same footprint as Phi.
+//      flux Phi_cell / (N P_cell), both read from that leaf cell itself (texelFetch).
 //    Why (docs/vsgl.md): the estimator's expectation is sum_j P_j Phi_h(j) / q(j). With q = P_j it
 //    is sum_j Phi_h(j), which over-counts bright texels next to dim ones (a dim texel's large
 //    footprint reaches into its bright neighbours; measured over 8 seeds in docs/conformance.md,
-//    "VSGL's footprints over 8 seeds"). With leaf cells (a partition: the criterion is monotone up
-//    the mip chain, so every texel of a leaf finds that leaf) and q = P_cell it would be
-//    sum_cells P_cell Phi_cell / P_cell, exact, with flux and probability read from the leaf cell
-//    itself. Here both are read bilinearly at the leaf's level (a bilinear flux over a bilinear
-//    probability), which moves smoothly with the draw but is not unbiased: over 8 seeds in the
-//    glossy room vsgl is +1.2% [+0.3, +2.1] against the one-bounce path tracer where vpl-brsm from
-//    the same draws is +7.2% [+5.3, +9.1]
-//    (`vplgi conform --scenes glossy --techniques vsgl,vpl-brsm,lightskin --seeds 8 --width 64
-//    --height 36 --spp 1024`, docs/conformance.md): 0.944x, the ratio of those two means
-//    (1.012 / 1.072). Reading the leaf cell exactly is issue "VSGL made exact".
+//    "VSGL's footprints over 8 seeds"). Leaf cells are a partition (the criterion is monotone up
+//    the mip chain, so every texel of a leaf finds that leaf), so with q = P_cell the expectation
+//    is sum_cells P_cell Phi_cell / P_cell = Phi, exact (tests/image/test_vsgl_technique.cpp sums
+//    it over every texel of a concentrated importance map). An earlier version read both bilinearly
+//    at the leaf's level (smooth in the draw, but -6% to -47% where importance is concentrated:
+//    issue "VSGL made exact"). Position, radius, normal and lobes stay bilinear at the leaf's level:
+//    they move smoothly with the draw and carry no 1/P.
 //  uMode 1, the same draws as VPLs (baseline vpl-brsm, eq. 1): level 0, no filtering, r = 0.
 //  uMode 2, a grid (the view lights): every texel of level uLevel is a light, flux 4^L Phi_L.
 #include "shared/bindings.h"
@@ -42,6 +39,7 @@ uniform int uMode;
 uniform int uCount;        // lights to write
 uniform int uSize;         // level-0 edge of one layer [texels]
 uniform int uLevels;       // mip levels
+uniform int uMaxLeaf;      // uFootprint 1: the coarsest leaf level (vsgl.maxLeaf; >= uLevels - 1: none)
 uniform int uLevel;        // uMode 2: the level whose texels are lights
 uniform float uSmoothness; // k
 uniform int uFootprint;    // uMode 0: 0 texel (the paper's reading), 1 cell (see the file head)
@@ -69,6 +67,7 @@ void main()
     float level = 0.0;
     float fluxScale;
     bool filtered = false;
+    ivec2 leafCell = ivec2(-1); // uFootprint 1: the leaf cell at `level` whose flux is read exactly
     if (uMode == 2) {
         int edge = max(uSize >> uLevel, 1);
         texel = ivec3(i % edge, i / edge, 0);
@@ -90,22 +89,26 @@ void main()
                 // The leaf: P_cell = 4^l x the mean importance at level l / the total (I_j / P_j).
                 float toProbability = s.probability / s.importance;
                 int leaf = 0;
-                for (int l = 1; l < uLevels; ++l) {
+                for (int l = 1; l < min(uLevels, uMaxLeaf + 1); ++l) {
                     float cell = texelFetch(uImportanceMips, ivec2(s.x, s.y) >> l, l).r * toProbability * exp2(2.0 * float(l));
                     if (!(float(uCount) * cell <= uSmoothness)) break;
                     leaf = l;
                 }
                 level = float(leaf);
-                vec2 uv = (vec2(s.x, s.y) + 0.5) / vec2(uSize * uLayers, uSize);
-                float probability = textureLod(uImportanceMips, uv, level).r * toProbability;
+                leafCell = ivec2(s.x, s.y) >> leaf;
+                // The leaf's probability and flux are the cell's box means times 4^leaf: the
+                // factors cancel in Phi_cell / (N P_cell).
+                float probability = texelFetch(uImportanceMips, leafCell, leaf).r * toProbability;
                 if (probability > 0.0) fluxScale = 1.0 / (float(uCount) * probability);
+                leafCell = ivec2(texel.xy) >> leaf; // the same cell in the RSM layer
             }
         }
     }
     vec3 uvLayer = vec3((vec2(texel.xy) + 0.5) / float(uSize), float(texel.z));
     vec4 position = fetch(kRSMPosition, uvLayer, level, filtered, texel);
     vec4 normal = fetch(kRSMNormal, uvLayer, level, filtered, texel);
-    vec4 flux = fetch(kRSMFlux, uvLayer, level, filtered, texel);
+    vec4 flux = leafCell.x >= 0 ? texelFetch(uSource[kRSMFlux], ivec3(leafCell, texel.z), int(level))
+                                : fetch(kRSMFlux, uvLayer, level, filtered, texel);
     if (!(normal.w > 0.0) || !(flux.r + flux.g + flux.b > 0.0) || dot(normal.xyz, normal.xyz) == 0.0) {
         lights[i] = light;
         return;
@@ -120,13 +123,15 @@ void main()
     float sharpness;
     toksvigDecode(lobe.xyz, axis, sharpness);
     light.positionRadius2 = vec4(position.xyz, uMode == 1 ? 0.0 : 2.0 * variance);
-    // The footprint's emission towards w is sum_k Phi_k cos(n_k, w) = Phi (n_mean . w): the mean
-    // normal keeps its length (|n_mean| < 1 where normals spread: normal maps, corners), which the
-    // unit normal of eq. (3)'s cosine drops, so the flux takes it (not in the paper; an earlier
-    // version without it was biased high in the normal-mapped glossy room; docs/vsgl.md).
+    // The footprint's diffuse emission towards w is sum_k Phi_k rho_k/pi cos(n_k, w) = Phi rho/pi
+    // (n_mean . w): the mean normal keeps its length (|n_mean| < 1 where normals spread: normal maps,
+    // corners), which the unit normal of eq. (3)'s cosine drops, so the diffuse coefficient takes it
+    // (not in the paper; an earlier version without it was biased high in the normal-mapped glossy
+    // room; docs/vsgl.md). The specular lobe carries its own exit cosine (sg.h ggxReflectionLobe),
+    // so |n_mean| is on the diffuse lobe only.
     float normalLength = min(length(normal.xyz), 1.0);
     light.normalValid = vec4(normal.xyz / length(normal.xyz), 1.0);
-    light.flux = vec4(flux.rgb * fluxScale * normalLength, float(texel.z)); // w: the layer (RSMLayerLight)
+    light.flux = vec4(flux.rgb * fluxScale, float(texel.z)); // w: the layer (RSMLayerLight)
     // Numeric guard: a draw of (nearly) zero probability makes 1 / (N P_j) overflow, and an RSM texel
     // can hold an overflowed flux (half floats end at 65504); such a light would be infinitely
     // strong, and inf * 0 poisons every pixel it reaches with NaN. It is dropped (left invalid).
@@ -135,7 +140,7 @@ void main()
         lights[i] = VSGLight(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0, 0.0, 1.0, 0.0), vec4(0.0));
         return;
     }
-    light.diffuse = vec4(diffuse.rgb, specular.w);
+    light.diffuse = vec4(diffuse.rgb * normalLength, specular.w);
     light.specular = vec4(specular.rgb, lobe.w);
     light.lobe = vec4(axis, sharpness);
     // A VPL (level 0) carries its triangle's normal from the RSM (flux.w, diffuse.w); a filtered

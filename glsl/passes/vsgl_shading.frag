@@ -65,12 +65,12 @@ void main()
         if (dot(ng, l.positionRadius2.xyz - s.position) <= 0.0) continue;
         float v = uVisibility != 0 ? ismVisibility(i, l.positionRadius2.xyz, l.normalValid.xyz, s.position, s.normal) : 1.0;
         if (v == 0.0) continue;
+        vec3 toLight = rsmDirectionToLight(layers[int(l.flux.w)], l.positionRadius2.xyz);
         if (uPointLights != 0) {
-            vec3 toLight = rsmDirectionToLight(layers[int(l.flux.w)], l.positionRadius2.xyz);
             sum += v * vplRadiance(s, l, toLight, uClampGeometry);
         } else {
             float lightCancelled;
-            sum += v * vsglRadianceReceiver(receiver, l, uBiasAlpha, lightCancelled);
+            sum += v * vsglRadianceReceiver(receiver, l, toLight, uBiasAlpha, lightCancelled);
             cancelled += lightCancelled;
         }
     }

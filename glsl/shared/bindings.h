@@ -51,6 +51,7 @@ VPLGI_CONST int kImageVPLShadowMaps = 6; // r32f 2D array: the VPL paraboloid ma
 VPLGI_CONST int kImageISMMaps = 6;    // ISM maps (r32f seen as r32ui): the level being splatted, pulled from or pushed
 VPLGI_CONST int kImageISMCoarser = 7; // ISM maps (r32f seen as r32ui): the next coarser level
 VPLGI_CONST int kImageSelectedVALs = 1; // r32f map of the RSM texels LightSkin selected (its debug view)
+VPLGI_CONST int kImageImportanceCoarser = 1; // r32f importance map, level l+1 (passes/importance_mips.comp)
 
 // Texture units.
 VPLGI_CONST int kUnitBaseColor = 0;

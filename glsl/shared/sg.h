@@ -36,12 +36,13 @@
 //
 //  The lobes of eq. (3), K = 2 at both ends (VSGL 3.1):
 //    shading point  f(x_s, w_s, w) ~= rho_s/pi + F(F0_s, n.v) ASG(w)    ASG: GGX NDF SG warped (Xu)
-//    light          Phi f(x_i, -w, w'_i) ~= Phi rho_d/pi + Phi F(F0_i, n_i.xi) s Gn(w; -xi, eta)
+//    light          Phi f(x_i, -w, w'_i) cos ~= Phi rho_d/pi cos+(-w.n_i) + Phi F(F0_i, n_i.xi) s' Gn(w; -xi, eta)
+//  with s' = s (n_i.xi) (the light's exit cosine at its lobe's axis, folded in by ggxReflectionLobe).
 //  The light's lobe leaves the light along xi; as a function of w (from x_s towards the light) its
 //  axis is -xi (MATH 4.10 "Axis sign"). With T_jl the integrals of the products with Gn_V:
 //    T_00 = 1,  T_01 = int Gn_l Gn_V (sgInnerProduct),  T_10 = int ASG Gn_V (asgSGProductIntegral),
 //    T_11 = int ASG (Gn_l Gn_V) (sgProduct, then asgSGProductIntegral)          MATH 4.10
-//    L = cos+(w_i.n_s) cos+(-w_i.n_i) 2 (1 - e^{-2 eta_V}) / (s (s + d)) sum_jl c'_j c_l T_jl
+//    L = cos+(w_i.n_s) 2 (1 - e^{-2 eta_V}) / (s (s + d)) sum_jl c'_j c_l T_jl,  c_0 with cos+(-w_i.n_i)
 //  A diffuse light on a diffuse receiver is therefore exactly
 //    rho_s/pi Phi rho_d/pi cos cos Omega/(pi r^2) (1 - e^{-8 pi/Omega})   (MATH 4.10 "both diffuse").
 //
@@ -52,7 +53,8 @@
 //  sharpnesses add where aligned lobes multiply; a term counts only where its coefficient is not
 //  zero, so two diffuse ends give eta_rho = 0 and always cancel when biasAlpha > 0). If
 //  eta_rho < biasAlpha 4pi/Omega, the integral is replaced by rho_i(w_i) Omega/(pi r^2) with the
-//  exact GGX BRDF at the shading point and the light's SG lobe evaluated at w_i.
+//  exact glTF BRDFs at both ends (the light's lit from the primary light's direction, toPrimary)
+//  and both cosines at w_i: eq. (1) over the cone's solid angle.
 //
 //  Degenerate inputs give finite results: an invalid light (normalValid.w = 0), zero normals, zero
 //  flux and r = 0 give 0 or the limits above; d = 0 with r > 0 takes w_i = n_s (the direction to a
@@ -239,11 +241,18 @@ VPLGI_FUNC SpecularLobe ggxWarpedSGLobe(vec3 n, vec3 incoming, float alpha, floa
 }
 
 // The light-side lobe of a surface of perceptual roughness `roughness` (glTF alpha = roughness^2,
-// at least kMinAlpha, as in brdf.h) lit from `incoming`: what the RSM pass stores per texel.
+// at least kMinAlpha, as in brdf.h) lit from `incoming`: what the RSM pass stores per texel. The
+// light's exit cosine cos(n, w) is folded into the integral factor at the axis, where it is
+// cos(n, incoming): s' = s (n . incoming), so that f_spec(w) cos(n, w) ~= F s' Gn(w; axis, eta).
+// A footprint's mip mean of s' is then the mean of each texel's own cosine, which the cosine of
+// the mean normal is not (VSGL section 3.1 leaves the cosine outside the lobes; issue "VSGL made
+// exact", part 2: with it outside, a filtered glossy light took its spread normal's cosine).
 VPLGI_FUNC SpecularLobe ggxReflectionLobe(vec3 n, vec3 incoming, float roughness)
 {
     float alpha = max(roughness * roughness, kMinAlpha);
-    return ggxWarpedSGLobe(n, incoming, alpha, ggxNDFSharpness(alpha));
+    SpecularLobe lobe = ggxWarpedSGLobe(n, incoming, alpha, ggxNDFSharpness(alpha));
+    lobe.integral *= max(dot(n, incoming), 0.0f);
+    return lobe;
 }
 
 // The warp as an ASG (Xu et al. 2013, MATH 4.7): z = the reflected view, x perpendicular to the
@@ -319,8 +328,8 @@ struct VSGLight {         // std430, 7 x vec4 = 112 bytes
     vec4 positionRadius2; // xyz filtered position E[x] [m], w r_i^2 = 2 sigma^2 [m^2] (MATH 5.3), >= 0
     vec4 normalValid;     // xyz unit (renormalised) normal n_i, w 1 valid / 0 empty
     vec4 flux;            // rgb incident flux of the light Phi_i = Phi_bar_h / (N P_j) [W], w the RSM layer it came from
-    vec4 diffuse;         // rgb diffuse reflectance rho_d (BRDF = rho_d/pi), w perceptual roughness
-    vec4 specular;        // rgb F0, w = s: the specular lobe's integral factor (SpecularLobe.integral)
+    vec4 diffuse;         // rgb diffuse reflectance rho_d (BRDF = rho_d/pi) times |n_mean| (VSGLs; 1 for VPLs), w perceptual roughness
+    vec4 specular;        // rgb F0, w = s': the specular lobe's integral factor with the exit cosine (ggxReflectionLobe)
     vec4 lobe;            // xyz unit lobe axis xi (direction the reflected light leaves in), w SG sharpness eta
     vec4 geometric;       // xyz the geometric normal n_g of a VPL's surface (the RSM texel's triangle; VSGLs: n_i), w 0
 };
@@ -360,7 +369,8 @@ VPLGI_FUNC VSGLReceiver vsglReceiver(VSGLShadingPoint s)
 }
 
 // vsglRadiance with the shading point's part precomputed (the loop over N lights calls this).
-VPLGI_FUNC vec3 vsglRadianceReceiver(VSGLReceiver r, VSGLight l, float biasAlpha, VPLGI_OUT(float) cancelled)
+VPLGI_FUNC vec3 vsglRadianceReceiver(VSGLReceiver r, VSGLight l, vec3 toPrimary, float biasAlpha,
+                                     VPLGI_OUT(float) cancelled)
 {
     cancelled = 0.0f;
     if (!(l.normalValid.w > 0.0f)) return vec3(0.0f);
@@ -370,11 +380,14 @@ VPLGI_FUNC vec3 vsglRadianceReceiver(VSGLReceiver r, VSGLight l, float biasAlpha
     if (!(lightDistance > 0.0f) && !(radius2 > 0.0f)) return vec3(0.0f);
     vec3 w = lightDistance > 0.0f ? toLight / lightDistance : r.point.normal;
     vec3 lightNormal = vec3(l.normalValid);
-    // q_jl's cosines, pulled out of the integral (eq. 3).
-    float cosines = max(dot(w, r.point.normal), 0.0f) * max(-dot(w, lightNormal), 0.0f);
-    if (!(cosines > 0.0f)) return vec3(0.0f);
+    // q_jl's cosines, pulled out of the integral (eq. 3): the receiver's on every term, the light's
+    // on its diffuse lobe (its specular lobe carries its own: ggxReflectionLobe). Nothing leaves a
+    // light below its surface.
+    float cosReceiver = max(dot(w, r.point.normal), 0.0f);
+    float cosLight = max(-dot(w, lightNormal), 0.0f);
+    if (!(cosReceiver > 0.0f) || !(cosLight > 0.0f)) return vec3(0.0f);
 
-    // The light's lobes (MATH 4.10): c_0 = Phi rho_d / pi, c_1 Gn_1 = Phi F s Gn(w; -xi, eta).
+    // The light's lobes (MATH 4.10): c_0 = Phi rho_d / pi, c_1 Gn_1 = Phi F s' Gn(w; -xi, eta).
     vec3 lobeAxis = vec3(l.lobe);
     float lobeSharpness = max(l.lobe.w, 0.0f);
     vec3 lightDiffuse = vec3(l.flux) * vec3(l.diffuse) * kInvPi;
@@ -390,34 +403,42 @@ VPLGI_FUNC vec3 vsglRadianceReceiver(VSGLReceiver r, VSGLight l, float biasAlpha
     float coneEta = coneSharpness(lightDistance, radius2);
     float omegaOverArea = coneSolidAngleOverArea(lightDistance, radius2);
 
-    // Section 3.3: pull rho out of the integral when it is smooth next to the cone (MATH 5.4).
+    // Section 3.3: pull rho out of the integral when it is smooth next to the cone (MATH 5.4), with
+    // the exact glTF BRDF at both ends (the paper's rho is the true BRDF; the light's is lit from
+    // toPrimary, so that the cancelled light tends to eq. (1) as r -> 0 anywhere in its lobe, not
+    // only at the SG fit's peak: issue "VSGL made exact", part 3).
     float sharpnessRho = (receiverGlossy ? r.sharpnessSG : 0.0f) + (lightGlossy ? lobeSharpness : 0.0f);
     if (biasAlpha > 0.0f && sharpnessRho < biasAlpha * coneEta) {
         cancelled = 1.0f;
         VSGLShadingPoint s = r.point;
         vec3 receiverBRDF = evaluateBRDFCoefficients(s.diffuse, s.f0, s.roughness, s.normal, s.view, w);
-        vec3 lightBRDF = lightDiffuse + (lightGlossy ? lightSpecular * sgEvaluate(lightLobe, w) : vec3(0.0f));
-        return receiverBRDF * lightBRDF * (cosines * omegaOverArea);
+        // The diffuse lobe needs no direction (the RSM's flux already took the incidence); the GGX
+        // lobe is 0 where toPrimary is below n_i, as eq. (1)'s.
+        vec3 lightBRDF = vec3(l.diffuse) * kInvPi;
+        if (lightGlossy) lightBRDF += evaluateBRDFCoefficients(vec3(0.0f), lightF0, l.diffuse.w, lightNormal, -w, toPrimary);
+        return vec3(l.flux) * receiverBRDF * lightBRDF * (cosReceiver * cosLight * omegaOverArea);
     }
 
     // Eq. (3) with the normalised cone: sum_jl c'_j c_l T_jl, T_00 = 1 (see the file head).
     SGLobe cone = sgNormalised(w, coneEta);
-    vec3 sum = r.diffuse * lightDiffuse;
+    vec3 sum = r.diffuse * lightDiffuse * cosLight;
     if (lightGlossy) sum += r.diffuse * lightSpecular * sgInnerProduct(lightLobe, cone);
     if (receiverGlossy) {
-        sum += r.specular * lightDiffuse * asgSGProductIntegral(r.lobe, cone);
+        sum += r.specular * lightDiffuse * (cosLight * asgSGProductIntegral(r.lobe, cone));
         if (lightGlossy) sum += r.specular * lightSpecular * asgSGProductIntegral(r.lobe, sgProduct(lightLobe, cone));
     }
     // 2 S(eta_V) / (pi r^2) = Omega/(pi r^2) (1 - e^{-2 eta_V}); eta_V >= 2, so no cancellation.
-    return sum * (cosines * omegaOverArea * (1.0f - exp(-2.0f * coneEta)));
+    return sum * (cosReceiver * omegaOverArea * (1.0f - exp(-2.0f * coneEta)));
 }
 
 // Reflected radiance at s towards s.view from one VSGL, without visibility [W/(m^2 sr)]: eq. (2)
 // with eq. (3), K = 2, and the bias reduction of section 3.3 when biasAlpha > 0 (cancelled = 1 when
-// it applied). Finite for r^2 -> 0 (tends to eq. 1 with the fitted lobes) and d -> 0.
-VPLGI_FUNC vec3 vsglRadiance(VSGLShadingPoint s, VSGLight l, float biasAlpha, VPLGI_OUT(float) cancelled)
+// it applied). Finite for r^2 -> 0 (tends to eq. 1 with the fitted lobes) and d -> 0. toPrimary
+// (unit, from the light towards the primary light) is read only by the bias reduction.
+VPLGI_FUNC vec3 vsglRadiance(VSGLShadingPoint s, VSGLight l, vec3 toPrimary, float biasAlpha,
+                             VPLGI_OUT(float) cancelled)
 {
-    return vsglRadianceReceiver(vsglReceiver(s), l, biasAlpha, cancelled);
+    return vsglRadianceReceiver(vsglReceiver(s), l, toPrimary, biasAlpha, cancelled);
 }
 
 // Eq. (1): the light as a point light with exact glTF BRDFs at both ends: at s its own, at the

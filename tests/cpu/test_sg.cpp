@@ -371,17 +371,20 @@ VSGLShadingPoint makePoint(const glm::vec3& position, const glm::vec3& normal, c
 }
 
 // The SG integrand of eq. (2)-(3) built from the lobes vsglRadiance uses (the receiver's ASG and
-// coefficients, the light's SG and coefficients), per colour channel at direction w.
+// coefficients, the light's SG and coefficients), per colour channel at direction u. The light's
+// diffuse lobe takes its cosine at the cone's axis w (pulled out of the integral); its specular lobe
+// carries its own (ggxReflectionLobe).
 struct LobeProduct {
     VSGLReceiver receiver;
     SGLobe light;
     glm::dvec3 lightDiffuse, lightSpecular;
 
-    LobeProduct(const VSGLShadingPoint& s, const VSGLight& l) : receiver(vsglReceiver(s))
+    LobeProduct(const VSGLShadingPoint& s, const VSGLight& l, const glm::vec3& w) : receiver(vsglReceiver(s))
     {
         const glm::vec3 n(l.normalValid), axis(l.lobe);
         light = sgNormalised(-axis, l.lobe.w);
-        lightDiffuse = glm::dvec3(glm::vec3(l.flux) * glm::vec3(l.diffuse)) / kPiD;
+        lightDiffuse = glm::dvec3(glm::vec3(l.flux) * glm::vec3(l.diffuse)) / kPiD *
+                       static_cast<double>(std::max(0.0f, -glm::dot(w, n)));
         const glm::vec3 f0(l.specular);
         lightSpecular = f0.x + f0.y + f0.z > 0.0f
                             ? glm::dvec3(glm::vec3(l.flux) *
@@ -437,12 +440,12 @@ TEST_CASE("vsglRadiance is eq. (2) with the SG integrand of eq. (3): against qua
             makeLight(d * towards, r * r, lightNormal, glm::vec3(2.0f, 1.0f, 0.5f), glm::vec3(0.6f, 0.5f, 0.4f),
                       glm::vec3(0.3f, 0.6f, 0.9f), 0.3f + 0.5f * unit(engine), incoming);
         float cancelled = -1.0f;
-        const glm::dvec3 shared = glm::dvec3(vsglRadiance(s, l, 0.0f, cancelled));
+        const glm::dvec3 shared = glm::dvec3(vsglRadiance(s, l, incoming, 0.0f, cancelled));
         CHECK(cancelled == 0.0f);
 
-        const LobeProduct product(s, l);
         const glm::vec3 w = towards;
-        const double cosines = std::max(0.0f, glm::dot(w, n)) * std::max(0.0f, -glm::dot(w, lightNormal));
+        const LobeProduct product(s, l, w);
+        const double cosines = std::max(0.0f, glm::dot(w, n));
         const SGLobe cone = makeSG(w, coneSharpness(d, r * r), 2.0f);
         const glm::dvec3 integral = integrateSphereAbout<glm::dvec3>(
             toDouble(w), [&](const glm::dvec3& u) { return product(u) * sgReference(cone, u); }, 2000, 256);
@@ -487,9 +490,9 @@ TEST_CASE("vsglRadiance of a diffuse light on a diffuse receiver is the closed f
         const glm::dvec3 exact = glm::dvec3(s.diffuse) / kPiD * glm::dvec3(glm::vec3(l.flux) * glm::vec3(l.diffuse)) /
                                  kPiD * cosines * omegaOverArea;
         float cancelled = -1.0f;
-        const glm::dvec3 sg = glm::dvec3(vsglRadiance(s, l, 0.0f, cancelled));
+        const glm::dvec3 sg = glm::dvec3(vsglRadiance(s, l, lightNormal, 0.0f, cancelled));
         CHECK(cancelled == 0.0f);
-        const glm::dvec3 reduced = glm::dvec3(vsglRadiance(s, l, 1e-3f, cancelled));
+        const glm::dvec3 reduced = glm::dvec3(vsglRadiance(s, l, lightNormal, 1e-3f, cancelled));
         if (cosines <= 0.0) { // facing away: nothing, and nothing to pull out
             CHECK((sg == glm::dvec3(0.0) && reduced == glm::dvec3(0.0)));
             continue;
@@ -567,7 +570,7 @@ TEST_CASE("bias reduction: the cancelled VSGL is eq. (1) as r -> 0, and only smo
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
     double worstDiffuseLight = 0.0, worstGlossyLight = 0.0;
-    int cancelledCount = 0;
+    int cancelledCount = 0, awayFromPeak = 0;
     for (int k = 0; k < 200; ++k) {
         const float viewAngle = degrees(70.0f * unit(engine));
         const VSGLShadingPoint s =
@@ -578,19 +581,23 @@ TEST_CASE("bias reduction: the cancelled VSGL is eq. (1) as r -> 0, and only smo
         towards = glm::normalize(towards);
         const float d = 0.5f + 2.0f * unit(engine), r = 1e-3f * d;
         const glm::vec3 lightNormal = glm::normalize(-towards + 0.5f * randomUnit(engine));
-        // The primary light's direction at the VSGL: anywhere above its surface for a diffuse light;
-        // for a glossy one, so that the lobe aims at the receiver (away from its peak the SG fit's
-        // pointwise error is large and says nothing about this branch).
+        // The primary light's direction at the VSGL: anywhere above its surface; for every other
+        // glossy light so that its lobe aims at the receiver (the SG fit's peak), for the rest away
+        // from it, where the SG lobe and GGX differ by a large factor (issue "VSGL made exact", part 3:
+        // with the light's SG lobe in this branch, as before, the worst error away from the peak was
+        // of order 1).
         const bool glossyLight = k % 2 == 1;
         glm::vec3 toPrimary = randomUnit(engine);
         if (glm::dot(toPrimary, lightNormal) < 0.0f) toPrimary = -toPrimary;
-        if (glossyLight && glm::dot(-towards, lightNormal) > 0.05f)
+        if (glossyLight && k % 4 == 1 && glm::dot(-towards, lightNormal) > 0.05f)
             toPrimary = glm::normalize(2.0f * glm::dot(lightNormal, -towards) * lightNormal + towards);
+        const glm::vec3 mirror = 2.0f * glm::dot(lightNormal, toPrimary) * lightNormal - toPrimary;
+        if (glossyLight && glm::dot(mirror, -towards) < std::cos(degrees(20.0f))) ++awayFromPeak;
         const VSGLight l = makeLight(d * towards, r * r, lightNormal, glm::vec3(1.0f, 0.7f, 0.4f), glm::vec3(0.5f),
                                      glossyLight ? glm::vec3(0.9f, 0.8f, 0.6f) : glm::vec3(0.0f),
                                      0.5f + 0.3f * unit(engine), toPrimary);
         float cancelled = -1.0f;
-        const glm::dvec3 reduced = glm::dvec3(vsglRadiance(s, l, 1e-3f, cancelled));
+        const glm::dvec3 reduced = glm::dvec3(vsglRadiance(s, l, toPrimary, 1e-3f, cancelled));
         if (cancelled != 1.0f) continue;
         ++cancelledCount;
         const glm::dvec3 point = glm::dvec3(vplRadiance(s, l, toPrimary, 0.0f));
@@ -604,12 +611,13 @@ TEST_CASE("bias reduction: the cancelled VSGL is eq. (1) as r -> 0, and only smo
     }
     MEASURED("bias reduction at r/d = 1e-3 vs eq. (1) (vplRadiance): worst relative error "
              << worstDiffuseLight << " (diffuse lights), " << worstGlossyLight
-             << " (glossy lights: the light's SG lobe vs its exact GGX); " << cancelledCount << " of 200 cancelled");
+             << " (glossy lights, " << awayFromPeak << " of them > 20 deg off their lobe's peak); " << cancelledCount
+             << " of 200 cancelled");
     CHECK(cancelledCount == 200);    // eta_V = 4e6 here: alpha eta_V = 4000 exceeds every lobe's sharpness
+    CHECK(awayFromPeak >= 40);       // most glossy lights are seen off their peak
     CHECK(worstDiffuseLight < 5e-6); // measured 2.1e-6: float rounding and 2 d^2/(s(s+d)) - 1 = -7.5e-7
-    // Measured 6.4e-6: at the lobe's axis the SG fit equals GGX (D(n) = 1/(pi alpha^2), V and F taken
-    // there); a lobe aimed the wrong way (axis sign) would miss by orders of magnitude.
-    CHECK(worstGlossyLight < 2e-5);
+    // Both ends exact GGX, as eq. (1): float rounding only, at and away from the lobe's peak.
+    CHECK(worstGlossyLight < 5e-6);
 
     // biasAlpha = 0 never cancels; a sharp receiver lobe next to a wide cone does not cancel.
     const VSGLShadingPoint sharp = makePoint(glm::vec3(0.0f), n, glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f)),
@@ -618,13 +626,13 @@ TEST_CASE("bias reduction: the cancelled VSGL is eq. (1) as r -> 0, and only smo
     const VSGLight wide =
         makeLight(towards, 0.1f, -towards, glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.0f), 0.5f, -towards);
     float cancelled = -1.0f;
-    vsglRadiance(sharp, wide, 1e-3f, cancelled);
+    vsglRadiance(sharp, wide, -towards, 1e-3f, cancelled);
     CHECK(cancelled == 0.0f);
-    vsglRadiance(sharp, wide, 1e6f, cancelled);
+    vsglRadiance(sharp, wide, -towards, 1e6f, cancelled);
     CHECK(cancelled == 1.0f);
     const VSGLight tiny =
         makeLight(towards, 1e-12f, -towards, glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.0f), 0.5f, -towards);
-    vsglRadiance(sharp, tiny, 0.0f, cancelled);
+    vsglRadiance(sharp, tiny, -towards, 0.0f, cancelled);
     CHECK(cancelled == 0.0f);
 }
 
@@ -647,9 +655,9 @@ TEST_CASE(
             const VSGLight l = makeLight(d * towards, ratio * ratio * d * d, lightNormal, glm::vec3(1.0f),
                                          glm::vec3(0.5f), glm::vec3(0.5f), roughness, toPrimary);
             float cancelled = -1.0f;
-            const glm::dvec3 sg = glm::dvec3(vsglRadiance(s, l, 0.0f, cancelled));
-            const LobeProduct product(s, l);
-            const double cosines = glm::dot(towards, n) * -glm::dot(towards, lightNormal);
+            const glm::dvec3 sg = glm::dvec3(vsglRadiance(s, l, toPrimary, 0.0f, cancelled));
+            const LobeProduct product(s, l, towards);
+            const double cosines = glm::dot(towards, n);
             const glm::dvec3 limit = product(toDouble(towards)) * cosines / (double(d) * d);
             const double error = worstChannelError(sg, limit);
             INFO("roughness " << roughness << ", r/d " << ratio << ": relative distance to the limit " << error);
@@ -678,9 +686,10 @@ TEST_CASE("degenerate inputs give finite radiance: zero normals, zero flux, r = 
     auto both = [&](const VSGLShadingPoint& point, const VSGLight& light, glm::vec3& sg, glm::vec3& reduced,
                     glm::vec3& vpl) {
         float cancelled = 0.0f;
-        sg = vsglRadiance(point, light, 0.0f, cancelled);
-        reduced = vsglRadiance(point, light, 1e-3f, cancelled);
-        vpl = vplRadiance(point, light, glm::normalize(glm::vec3(0.1f, 0.2f, -1.0f)), 0.0f);
+        const glm::vec3 toPrimary = glm::normalize(glm::vec3(0.1f, 0.2f, -1.0f));
+        sg = vsglRadiance(point, light, toPrimary, 0.0f, cancelled);
+        reduced = vsglRadiance(point, light, toPrimary, 1e-3f, cancelled);
+        vpl = vplRadiance(point, light, toPrimary, 0.0f);
         return finite(sg) && finite(reduced) && finite(vpl);
     };
     glm::vec3 sg, reduced, vpl;

@@ -124,6 +124,42 @@ TEST_CASE("vsgl / vpl-brsm: count 65536 is clamped to llvmpipe's loop budget wit
     }
 }
 
+TEST_CASE("vsgl: a view-light grid beyond the loop budget is read at the first coarser level that fits, with a warning",
+          "[limits][vsgl]")
+{
+    // vsgl.viewGrid 512 at level 0 is 262144 view lights, each RSM texel's importance loops over
+    // all of them; llvmpipe stops a loop after 65535 iterations, so level 1 (65536) does not fit
+    // either and level 2 (16384) is used: the image equals viewLevel = 2's bit for bit.
+    test::ensureGLContext();
+    const bool llvmpipe = gl::rendererName().find("llvmpipe") != std::string::npos;
+    const Scene scene = test::cornerScene(0.0f, 1.0f);
+    auto render = [&](int level) {
+        std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
+            scene, "vsgl",
+            {{"rsm.size", "32"}, {"vsgl.count", "64"}, {"vsgl.visibility", "none"}, {"vsgl.viewGrid", "512"},
+             {"vsgl.viewLevel", std::to_string(level)}});
+        return test::renderIndirect(*renderer, scene.cameras[0], 12, 9);
+    };
+    const std::size_t warningsBefore = gl::limitWarnings().size();
+    const ImageRGBA32F finest = render(0);
+    const std::vector<std::string>& warnings = gl::limitWarnings();
+    const bool warned = std::any_of(warnings.begin() + static_cast<long>(warningsBefore), warnings.end(),
+                                    [](const std::string& w) {
+                                        return w.find("vsgl view lights") != std::string::npos &&
+                                               w.find("= 262144") != std::string::npos;
+                                    });
+    if (llvmpipe) {
+        CHECK(warned);
+        const ImageRGBA32F fits = render(2);
+        double sum = 0.0;
+        for (float v : fits.pixels) sum += v;
+        CHECK(sum > 0.0);
+        CHECK(test::firstBitDifference(finest.pixels, fits.pixels) == -1);
+    } else {
+        CHECK_FALSE(warned); // 29 MB of view lights fit a storage block; no loop budget elsewhere
+    }
+}
+
 TEST_CASE("ir: more VPLs than llvmpipe's loop budget are shaded as a subset, not darker", "[limits][ir]")
 {
     test::ensureGLContext();

@@ -209,3 +209,58 @@ TEST_CASE("why the marginal is a serial sum: a log-step scan moves past zero ter
     CHECK(serialMoves == 0);
     CHECK(logStepMoves > 0);
 }
+
+TEST_CASE("the importance map's box mips equal the CPU twin's bit for bit, six layers side by side",
+          "[gl][importance][determinism]")
+{
+    // VSGL's cell footprints read a cell's probability as 4^l times its level-l texel
+    // (passes/vsgl_generate.comp), so the mips must be exact box means: the pass sums each 2x2 in a
+    // fixed order, which a float loop on the CPU repeats bit for bit. The width 6 x 16 (a point
+    // light's cube faces) is not a power of two, where glGenerateTextureMipmap may filter otherwise.
+    test::ensureGLContext();
+    const int size = 16, layers = 6, width = size * layers, levels = 5;
+    Pcg32 rng(5, 11);
+    std::vector<float> level(static_cast<std::size_t>(width * size));
+    for (float& v : level)
+        v = rng.uniform() < 0.3f ? 0.0f : rng.uniform() * std::ldexp(1.0f, static_cast<int>(rng.below(20)) - 10);
+    gl::TextureDesc desc;
+    desc.format = GL_R32F;
+    desc.width = width;
+    desc.height = size;
+    desc.levels = levels;
+    gl::Texture texture("importance map with mips", desc);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, width, size, GL_RED, GL_FLOAT, level.data());
+    ImportanceSampler sampler(test::shaders());
+    sampler.buildMips(texture, NextRead::TextureReadback);
+    int w = width, h = size;
+    for (int l = 1; l < levels; ++l) {
+        const int fineWidth = w;
+        w /= 2;
+        h /= 2;
+        std::vector<float> coarse(static_cast<std::size_t>(w * h));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                auto at = [&](int i, int j) { return level[static_cast<std::size_t>(j * fineWidth + i)]; };
+                const float top = at(2 * x, 2 * y) + at(2 * x + 1, 2 * y);
+                const float bottom = at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1);
+                coarse[static_cast<std::size_t>(y * w + x)] = (top + bottom) * 0.25f;
+            }
+        std::vector<float> gpu(coarse.size());
+        glGetTextureImage(texture.id(), l, GL_RED, GL_FLOAT, static_cast<GLsizei>(gpu.size() * sizeof(float)), gpu.data());
+        INFO("level " << l << " (" << w << " x " << h << ")");
+        CHECK(firstBitDifference(gpu, coarse) == -1);
+        level = std::move(coarse);
+    }
+    gl::checkDebugMessages();
+
+    // Sides that do not halve exactly at every level: one clear error.
+    gl::TextureDesc odd = desc;
+    odd.width = 24;
+    odd.height = 8;
+    odd.levels = 4; // 24 -> 12 -> 6 -> 3 but 8 -> 4 -> 2 -> 1: fine; a fifth level would not be
+    gl::Texture fine("importance map 24 x 8", odd);
+    CHECK_NOTHROW(sampler.buildMips(fine, NextRead::None));
+    odd.width = 20; // 20 -> 10 -> 5 -> 2: 5 does not halve exactly
+    gl::Texture bad("importance map 20 x 8", odd);
+    CHECK_THROWS_WITH(sampler.buildMips(bad, NextRead::None), Catch::Contains("halve exactly"));
+}

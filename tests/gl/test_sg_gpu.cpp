@@ -45,8 +45,8 @@ std::vector<glm::vec4> expectedResults(const Case& c)
 {
     const VSGLShadingPoint s = shadingPoint(c);
     float cancelledSG = -1.0f, cancelledReduced = -1.0f;
-    const glm::vec3 sg = vsglRadiance(s, c.light, 0.0f, cancelledSG);
-    const glm::vec3 reduced = vsglRadiance(s, c.light, c.parameters.x, cancelledReduced);
+    const glm::vec3 sg = vsglRadiance(s, c.light, glm::vec3(c.toLightClamp), 0.0f, cancelledSG);
+    const glm::vec3 reduced = vsglRadiance(s, c.light, glm::vec3(c.toLightClamp), c.parameters.x, cancelledReduced);
     const SpecularLobe lobe = ggxReflectionLobe(s.normal, s.view, s.roughness);
     const glm::vec3 encoded = toksvigEncode(lobe.axis, lobe.sharpness);
     glm::vec3 axis;

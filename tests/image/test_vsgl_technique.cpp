@@ -16,6 +16,7 @@
 #include "core/trace/ray_scene.h"
 #include "core/util/metrics.h"
 #include "gl/passes/compute_pass.h"
+#include "gl/passes/importance_sampler.h"
 #include "gl/passes/rsm_pass.h"
 #include "gl/techniques/vsgl_technique.h"
 #include "glsl/shared/bindings.h"
@@ -181,10 +182,10 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
         REQUIRE(g.normalValid.w == 1.0f);
         worstPosition = std::max(worstPosition, static_cast<double>(glm::length(glm::vec3(g.positionRadius2) - glm::vec3(position))));
         worstRadius = std::max(worstRadius, std::abs(g.positionRadius2.w - r2) / std::max(r2, 1e-4));
-        // Phi_h / (N P_j) times the mean normal's length (the footprint's cosine: vsgl_generate.comp).
+        // Phi_h / (N P_j); the mean normal's length (the footprint's diffuse cosine: vsgl_generate.comp)
+        // scales the diffuse coefficient.
         const float normalLength = std::min(glm::length(glm::vec3(normal)), 1.0f);
-        worstFlux = std::max(worstFlux, static_cast<double>(std::abs(g.flux.r * count * d.probability - flux.r * normalLength) /
-                                                            (flux.r * normalLength)));
+        worstFlux = std::max(worstFlux, static_cast<double>(std::abs(g.flux.r * count * d.probability - flux.r) / flux.r));
         if (lod >= 3.0f) CHECK(normalLength < 0.999f); // the synthetic normals spread: the length matters
         worstNormal = std::max(worstNormal, static_cast<double>(glm::length(glm::vec3(g.normalValid) - glm::normalize(glm::vec3(normal)))));
         glm::vec3 axis;
@@ -194,7 +195,7 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
         worstAxis = std::max(worstAxis, static_cast<double>(glm::length(glm::vec3(g.lobe) - glm::vec3(axisSharpness))));
         worstSharpness = std::max(worstSharpness, static_cast<double>(std::abs(g.lobe.w - axisSharpness.w) / axisSharpness.w));
         worstCoefficient = std::max({worstCoefficient, static_cast<double>(std::abs(g.specular.w - lobe.w)),
-                                     static_cast<double>(glm::length(glm::vec3(g.diffuse) - glm::vec3(diffuse)))});
+                                     static_cast<double>(glm::length(glm::vec3(g.diffuse) - glm::vec3(diffuse) * normalLength))});
         if (lod >= 1.0f) CHECK(g.positionRadius2.w > 0.0f); // a footprint of several texels has an extent
     }
     MEASURED("VSGL generation vs CPU twin (32^2 synthetic RSM, 8 draws, levels 0-5): worst position "
@@ -216,8 +217,8 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     CHECK(worstCoefficient < test::twinTolerance(4e-7, 8e-4));
 
     // vsgl.footprint = cell: the same draws, each at the coarsest mip cell around it holding at most
-    // k expected draws (N P_cell <= k), flux Phi_h / (N P_h) with P_h the importance map's bilinear
-    // mean at that level over the total (I_j / P_j). The map: a smooth bump whose cells' expected
+    // k expected draws (N P_cell <= k), flux Phi_cell / (N P_cell), both the leaf cell's own (its box
+    // means: the 4^l factors cancel), position and the rest bilinear at the leaf's level. The map: a smooth bump whose cells' expected
     // draws grow through k at different levels for different draws, and each draw's texel set to
     // P_j * total (consistent draws).
     Attachments importance(1, std::vector<glm::vec4>(static_cast<std::size_t>(size * size)));
@@ -242,7 +243,8 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     std::vector<float> importanceTexels;
     for (const glm::vec4& v : importance[0]) importanceTexels.push_back(v.r);
     glTextureSubImage2D(importanceMap.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, importanceTexels.data());
-    glGenerateTextureMipmap(importanceMap.id());
+    memoryBarrier(NextRead::Image);
+    ImportanceSampler(test::shaders()).buildMips(importanceMap, NextRead::TextureFetch);
     const std::vector<Attachments> importanceMips = cpuMips(importance, size);
     gl::Buffer consistentBuffer("VSGL test draws with importance",
                                 static_cast<GLsizeiptr>(consistent.size() * sizeof(shared::ImportanceSample)),
@@ -253,6 +255,7 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), trilinearSampler.id());
     bindStorageBuffer(shared::kBindingImportanceSamples, consistentBuffer);
     generate.program().set("uFootprint", 1);
+    generate.program().set("uMaxLeaf", 12); // no cap
     generate.program().set("uLayers", 1);
     generate.dispatch(count, 1, NextRead::BufferReadback);
     generate.program().set("uFootprint", 0);
@@ -276,10 +279,10 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
         const float lod = static_cast<float>(leaf);
         const glm::vec2 uv = (glm::vec2(d.x, d.y) + 0.5f) / static_cast<float>(size);
         const glm::vec4 position = trilinear(mips, shared::kRSMPosition, uv, lod);
-        const glm::vec4 normal = trilinear(mips, shared::kRSMNormal, uv, lod);
-        const glm::vec4 flux = trilinear(mips, shared::kRSMFlux, uv, lod);
-        const double probabilityH = trilinear(importanceMips, 0, uv, lod).r / total;
-        const double expected = flux.r * std::min(glm::length(glm::vec3(normal)), 1.0f) / (count * probabilityH);
+        const std::size_t cell = static_cast<std::size_t>((d.y >> leaf) * (size >> leaf) + (d.x >> leaf));
+        const double fluxCell = mips[static_cast<std::size_t>(leaf)][shared::kRSMFlux][cell].r;
+        const double probabilityCell = importanceMips[static_cast<std::size_t>(leaf)][0][cell].r / total;
+        const double expected = fluxCell / (count * probabilityCell);
         const shared::VSGLight& g = cells[static_cast<std::size_t>(i)];
         REQUIRE(g.normalValid.w == 1.0f);
         worstCellFlux = std::max(worstCellFlux, std::abs(g.flux.r - expected) / expected);
@@ -292,12 +295,124 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     for (int leaf : leaves) leafList << leaf << " ";
     MEASURED("VSGL generation, cell footprints, vs CPU twin: leaves " << leafList.str() << ", worst flux " << worstCellFlux << ", position " << worstCellPosition << " m");
     CHECK(distinct.size() >= 3); // the draws exercise several leaf levels
-    // Measured: leaves 4 2 4 4 3 4 4 4, flux 1.9e-7, position 1.2e-7 m (float filtering and
-    // rounding); bounds ~2.5-3x. A leaf one level off filters over 4x the texels: its position and
-    // flux leave these bounds by orders of magnitude on this curved, unevenly important patch.
-    // On an H200 (8-bit filter weights, test::twinTolerance): flux 2.3e-3, position 3.0e-7 m.
-    CHECK(worstCellFlux < test::twinTolerance(5e-7, 6e-3));
+    // Measured: leaves 4 2 4 4 3 4 4 4, flux 1.2e-7, position 1.2e-7 m (float rounding); bounds
+    // ~3x. A leaf one level off takes 4x the cell's probability and a position filtered over 4x the
+    // texels: both leave these bounds by orders of magnitude on this curved, unevenly important patch.
+    // On a hardware GPU the flux and probability are fetched, not filtered (not yet measured there:
+    // the bound allows the mip generation's rounding); the position's bound is the H200's 3.0e-7 m.
+    CHECK(worstCellFlux < test::twinTolerance(4e-7, 1e-5));
     CHECK(worstCellPosition < 4e-7);
+}
+
+TEST_CASE("VSGL cell footprints are unbiased: over every texel, sum_j P_j N Phi_j equals the RSM's flux on "
+          "concentrated importance",
+          "[vsgl][numbers]")
+{
+    // The estimator sums N lights, light j of flux Phi_cell(j) / (N P_cell(j)) drawn with probability
+    // P_j; its expectation, N sum_j P_j Phi_j over all texels, is the RSM's total flux exactly when the
+    // leaf cells partition the map and flux and probability are the leaf's own (vsgl_generate.comp).
+    // Here every texel is one "draw" with its own P_j and the GPU writes each light: the sum is the
+    // expectation itself, no sampling noise. Importance = flux x a view factor concentrated in spots
+    // and a band, as a BRSM's glossy receivers make it, so that P is far from proportional to Phi.
+    test::ensureGLContext();
+    const int size = 32, levels = 6, texels = size * size;
+    Attachments level0 = syntheticRSM(size);
+    Attachments importance(1, std::vector<glm::vec4>(static_cast<std::size_t>(texels)));
+    double totalFlux = 0.0;
+    float totalImportance = 0.0f;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const std::size_t at = static_cast<std::size_t>(y * size + x);
+            float flux = 0.2f + 0.8f * std::exp(-0.01f * static_cast<float>((x - 20) * (x - 20) + (y - 10) * (y - 10)));
+            if (x == 17 && y > 3 && y < 29) flux = 3.0f; // a bright ridge
+            level0[shared::kRSMFlux][at] = glm::vec4(flux, flux, flux, 0.0f);
+            // The view factor (what a BRSM's glossy receivers make of each texel): concentrated in a
+            // few spots and a narrow band, independent of the flux.
+            float view = 0.01f;
+            if ((x == 5 && y == 7) || (x == 22 && y == 13) || (x == 9 && y == 27)) view = 100.0f;
+            if (y == 20 && x > 2 && x < 30) view = 5.0f;
+            importance[0][at] = glm::vec4(flux * view);
+            totalFlux += flux;
+            totalImportance += flux * view;
+        }
+    gl::RenderTarget rsm = makeRSMLayoutTarget("concentrated RSM", false);
+    rsm.resize(size, size, 1);
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+        glTextureSubImage3D(rsm.color(a).id(), 0, 0, 0, 0, size, size, 1, GL_RGBA, GL_FLOAT,
+                            level0[static_cast<std::size_t>(a)].data());
+    ComputePass downsample(test::shaders(), "rsm downsample", "passes/rsm_downsample.comp");
+    memoryBarrier(NextRead::TextureFetch);
+    downsampleRSMLayout(downsample, rsm);
+
+    gl::TextureDesc importanceDesc;
+    importanceDesc.format = GL_R32F;
+    importanceDesc.width = size;
+    importanceDesc.height = size;
+    importanceDesc.levels = levels;
+    gl::Texture importanceMap("VSGL test concentrated importance", importanceDesc);
+    std::vector<float> importanceTexels;
+    for (const glm::vec4& v : importance[0]) importanceTexels.push_back(v.r);
+    glTextureSubImage2D(importanceMap.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, importanceTexels.data());
+    memoryBarrier(NextRead::Image);
+    ImportanceSampler(test::shaders()).buildMips(importanceMap, NextRead::TextureFetch);
+
+    std::vector<shared::ImportanceSample> everyTexel;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const float value = importance[0][static_cast<std::size_t>(y * size + x)].r;
+            everyTexel.push_back({x, y, value / totalImportance, value});
+        }
+    gl::Buffer drawBuffer("VSGL test every texel",
+                          static_cast<GLsizeiptr>(everyTexel.size() * sizeof(shared::ImportanceSample)), everyTexel.data());
+    gl::Buffer lightBuffer("VSGL test lights", texels * static_cast<GLsizeiptr>(sizeof(shared::VSGLight)));
+    gl::SamplerDesc trilinearDesc;
+    trilinearDesc.minFilter = GL_LINEAR_MIPMAP_LINEAR;
+    gl::Sampler trilinearSampler("VSGL test trilinear", trilinearDesc);
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+        glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), rsm.color(a).id());
+        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), trilinearSampler.id());
+    }
+    glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), importanceMap.id());
+    glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), trilinearSampler.id());
+    ComputePass generate(test::shaders(), "VSGL generation", "passes/vsgl_generate.comp");
+    bindStorageBuffer(shared::kBindingImportanceSamples, drawBuffer);
+    bindStorageBuffer(shared::kBindingVSGLights, lightBuffer);
+    generate.program().set("uMode", 0);
+    generate.program().set("uCount", texels);
+    generate.program().set("uSize", size);
+    generate.program().set("uLevels", levels);
+    generate.program().set("uLevel", 0);
+    generate.program().set("uLayers", 1);
+    // k = 16: leaves from level 0 (the spots) to level 5 (the dim floor far from the view factor).
+    const float k = 16.0f;
+    generate.program().set("uSmoothness", k);
+    generate.program().set("uMaxLeaf", 12); // no cap
+    // Runs: texel footprints; cell footprints; cell footprints with leaves capped at level 2
+    // (vsgl.maxLeaf: the cells of one level still partition the map).
+    double ratio[3] = {0.0, 0.0, 0.0};
+    for (int run : {0, 1, 2}) {
+        generate.program().set("uFootprint", run == 0 ? 0 : 1);
+        generate.program().set("uMaxLeaf", run == 2 ? 2 : 12);
+        generate.dispatch(texels, 1, NextRead::BufferReadback);
+        const std::vector<shared::VSGLight> lights = test::readBuffer<shared::VSGLight>(lightBuffer, texels);
+        double expectation = 0.0;
+        for (int j = 0; j < texels; ++j)
+            expectation += static_cast<double>(everyTexel[static_cast<std::size_t>(j)].probability) * texels *
+                           lights[static_cast<std::size_t>(j)].flux.r;
+        ratio[run] = expectation / totalFlux;
+    }
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+    glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), 0);
+    MEASURED("VSGL estimator's expectation / RSM flux on concentrated importance (k = " << k << ", N = " << texels
+             << "): cell 1 + " << ratio[1] - 1.0 << ", cell with leaves capped at level 2: 1 + " << ratio[2] - 1.0
+             << ", texel (the paper's reading) " << ratio[0]);
+    // Measured: cell 1 + 7.6e-9 (float rounding); the bound leaves room for a 1024-term float sum
+    // on other drivers. The bilinear flux over bilinear probability this replaced gave 0.448 on this
+    // map. The texel reading is printed, not asserted: its expectation sum_j Phi_h(j) is biased by
+    // design (docs/vsgl.md).
+    CHECK(std::abs(ratio[1] - 1.0) < test::twinTolerance(1e-6, 1e-4));
+    CHECK(std::abs(ratio[2] - 1.0) < test::twinTolerance(1e-6, 1e-4));
 }
 
 TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccluded corner as N grows",
@@ -315,9 +430,14 @@ TEST_CASE("vsgl and vpl-brsm converge to the one-bounce path tracer on an unoccl
     double vsglError[3], vplError[3], between[3], vsglBias = 0.0, vplBias = 0.0;
     for (int i = 0; i < 3; ++i) {
         const std::string n = std::to_string(counts[i]);
+        // The paper's footprints, uncapped (vsgl.maxLeaf 12): they shrink towards the VPLs' as N
+        // grows, which is what this test follows. With the default cap (4 x 4 texels) they are
+        // already near the VPLs at N = 256 (relative L1 between the two 0.008, 0.016, 0.011).
         auto render = [&](const std::string& technique) {
-            std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
-                scene, technique, {{"rsm.size", "128"}, {technique + ".count", n}, {technique + ".visibility", "none"}});
+            std::vector<std::pair<std::string, std::string>> settings{
+                {"rsm.size", "128"}, {technique + ".count", n}, {technique + ".visibility", "none"}};
+            if (technique == "vsgl") settings.emplace_back("vsgl.maxLeaf", "12");
+            std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(scene, technique, settings);
             return test::renderIndirect(*renderer, camera, width, height);
         };
         const ImageRGBA32F vsgl = render("vsgl");
@@ -465,4 +585,53 @@ TEST_CASE("vsgl on the shared CornellBox.glb (millimetres, a spot light added): 
     CHECK(bias[2] < 0.02);
     CHECK(bias[2] > -0.05);
     CHECK(error[2] < 0.3);
+}
+
+TEST_CASE("Fig. 4a: on the caustics scene the original BRSM point-formula PDF makes vpl-brsm far noisier than the "
+          "VSGL paper's PDF",
+          "[vsgl][image][numbers]")
+{
+    // VSGL Fig. 4 (a, b): "The original BRSM technique cannot produce an appropriate PDF for specular
+    // surfaces, and thus generates VPLs with high variance" (spiky artifacts). Measured as the
+    // per-pixel noise over seeds: sqrt(mean over pixels of the variance over seeds) / the mean
+    // image's mean. Same scene, N and seeds; only vpl-brsm.pdf differs.
+    test::ensureGLContext();
+    const Scene scene = makeBuiltinScene("caustics");
+    const Camera& camera = scene.cameras[0];
+    const int seeds = 6, width = 32, height = 18;
+    auto spread = [&](const std::string& technique, const std::string& pdf) {
+        std::vector<ImageRGBA32F> images;
+        for (int seed = 1; seed <= seeds; ++seed) {
+            std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
+                scene, technique,
+                {{technique + ".pdf", pdf}, {technique + ".seed", std::to_string(seed)}, {technique + ".visibility", "none"}});
+            images.push_back(test::renderIndirect(*renderer, camera, width, height));
+        }
+        double variance = 0.0, mean = 0.0;
+        const int pixels = width * height;
+        for (int p = 0; p < pixels; ++p) {
+            std::vector<double> values;
+            for (const ImageRGBA32F& image : images) {
+                const float* rgb = &image.pixels[static_cast<std::size_t>(4 * p)];
+                values.push_back(0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]);
+            }
+            double m = 0.0, v = 0.0;
+            for (double x : values) m += x / seeds;
+            for (double x : values) v += (x - m) * (x - m) / (seeds - 1);
+            mean += m / pixels;
+            variance += v / pixels;
+        }
+        return std::sqrt(variance) / mean;
+    };
+    const double sg = spread("vpl-brsm", "sg"), point = spread("vpl-brsm", "point");
+    const double vsglSG = spread("vsgl", "sg"), vsglPoint = spread("vsgl", "point");
+    MEASURED("caustics (N = 1024, RSM 256^2, no visibility, 32x18, " << seeds << " seeds): per-pixel noise over seeds / "
+             "mean, vpl-brsm: SG PDF " << sg << ", point-formula PDF " << point << " (" << point / sg << "x); vsgl: SG PDF "
+             << vsglSG << ", point-formula PDF " << vsglPoint << " (" << vsglPoint / vsglSG << "x)");
+    // Measured (seeds 1-6; seeds 7-12 in brackets): vpl-brsm 8.67 vs 16.7, 1.93x [8.04 vs 12.3, 1.53x]
+    // (both spiky: unclamped VPLs, Fig. 4b); vsgl 0.93 vs 2.19, 2.36x [0.84 vs 2.95, 3.52x]. The
+    // bounds are about 0.7-0.8x the smaller ratio of each. conform over 8 seeds at 64x36 agrees
+    // (docs/vsgl.md, "VSGL made exact").
+    CHECK(point > 1.2 * sg);
+    CHECK(vsglPoint > 1.6 * vsglSG);
 }

@@ -35,9 +35,9 @@ void main()
     int base = kResultsPerCase * i;
 
     float cancelled = -1.0;
-    vec3 sg = vsglRadiance(s, c.light, 0.0, cancelled);
+    vec3 sg = vsglRadiance(s, c.light, c.toLightClamp.xyz, 0.0, cancelled);
     results[base + 0] = vec4(sg, cancelled);
-    vec3 reduced = vsglRadiance(s, c.light, c.parameters.x, cancelled);
+    vec3 reduced = vsglRadiance(s, c.light, c.toLightClamp.xyz, c.parameters.x, cancelled);
     results[base + 1] = vec4(reduced, cancelled);
     results[base + 2] = vec4(vplRadiance(s, c.light, c.toLightClamp.xyz, c.toLightClamp.w),
                              vsglMipLevel(c.parameters.z, c.parameters.y, c.parameters.w, 9));
