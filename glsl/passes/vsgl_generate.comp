@@ -18,7 +18,10 @@
 //    it over every texel of a concentrated importance map). An earlier version read both bilinearly
 //    at the leaf's level (smooth in the draw, but -6% to -47% where importance is concentrated:
 //    issue "VSGL made exact"). Position, radius, normal and lobes stay bilinear at the leaf's level:
-//    they move smoothly with the draw and carry no 1/P.
+//    they move smoothly with the draw and carry no 1/P. Leaves stop at level uMaxLeaf (vsgl.maxLeaf,
+//    ours, default 2 = 4x4 texels): the cells of one level are a partition too, so the cap costs no
+//    bias, and it keeps a leaf from carrying, say, a sunlit roof's flux into the room below it
+//    (docs/vsgl.md, "VSGL made exact": sealed room +28% uncapped, -4% capped).
 //  uMode 1, the same draws as VPLs (baseline vpl-brsm, eq. 1): level 0, no filtering, r = 0.
 //  uMode 2, a grid (the view lights): every texel of level uLevel is a light, flux 4^L Phi_L.
 #include "shared/bindings.h"

@@ -111,6 +111,37 @@ struct Draw {
     float probability;
 };
 
+// Level 0 of a size^2 RSM-layout target from `level0`, its mips by the RSM pass's own kernel.
+gl::RenderTarget uploadRSM(const char* name, const Attachments& level0, int size)
+{
+    gl::RenderTarget rsm = makeRSMLayoutTarget(name, false);
+    rsm.resize(size, size, 1);
+    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+        glTextureSubImage3D(rsm.color(a).id(), 0, 0, 0, 0, size, size, 1, GL_RGBA, GL_FLOAT,
+                            level0[static_cast<std::size_t>(a)].data());
+    ComputePass downsample(test::shaders(), "rsm downsample", "passes/rsm_downsample.comp");
+    memoryBarrier(NextRead::TextureFetch);
+    downsampleRSMLayout(downsample, rsm);
+    return rsm;
+}
+
+// An R32F importance map (the .r of `values`) with `levels` box mips by the technique's own pass.
+gl::Texture uploadImportance(const char* name, const std::vector<glm::vec4>& values, int size, int levels)
+{
+    gl::TextureDesc desc;
+    desc.format = GL_R32F;
+    desc.width = size;
+    desc.height = size;
+    desc.levels = levels;
+    gl::Texture map(name, desc);
+    std::vector<float> texels;
+    for (const glm::vec4& v : values) texels.push_back(v.r);
+    glTextureSubImage2D(map.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, texels.data());
+    memoryBarrier(NextRead::Image);
+    ImportanceSampler(test::shaders()).buildMips(map, NextRead::TextureFetch);
+    return map;
+}
+
 } // namespace
 
 TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match a CPU evaluation", "[vsgl][numbers]")
@@ -119,14 +150,7 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     const int size = 32;
     const int levels = 6;
     const Attachments level0 = syntheticRSM(size);
-    gl::RenderTarget rsm = makeRSMLayoutTarget("synthetic RSM", false);
-    rsm.resize(size, size, 1);
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
-        glTextureSubImage3D(rsm.color(a).id(), 0, 0, 0, 0, size, size, 1, GL_RGBA, GL_FLOAT,
-                            level0[static_cast<std::size_t>(a)].data());
-    ComputePass downsample(test::shaders(), "rsm downsample", "passes/rsm_downsample.comp");
-    memoryBarrier(NextRead::TextureFetch);
-    downsampleRSMLayout(downsample, rsm);
+    const gl::RenderTarget rsm = uploadRSM("synthetic RSM", level0, size);
     const std::vector<Attachments> mips = cpuMips(level0, size);
 
     // N = 8 draws, k = 4: P = k / (N 4^h) puts draw i at level h; the last two clamp to the top level
@@ -234,17 +258,7 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
         d.importance = importance[0][static_cast<std::size_t>(d.y * size + d.x)].r;
         d.probability = d.importance / total;
     }
-    gl::TextureDesc importanceDesc;
-    importanceDesc.format = GL_R32F;
-    importanceDesc.width = size;
-    importanceDesc.height = size;
-    importanceDesc.levels = levels;
-    gl::Texture importanceMap("VSGL test importance", importanceDesc);
-    std::vector<float> importanceTexels;
-    for (const glm::vec4& v : importance[0]) importanceTexels.push_back(v.r);
-    glTextureSubImage2D(importanceMap.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, importanceTexels.data());
-    memoryBarrier(NextRead::Image);
-    ImportanceSampler(test::shaders()).buildMips(importanceMap, NextRead::TextureFetch);
+    const gl::Texture importanceMap = uploadImportance("VSGL test importance", importance[0], size, levels);
     const std::vector<Attachments> importanceMips = cpuMips(importance, size);
     gl::Buffer consistentBuffer("VSGL test draws with importance",
                                 static_cast<GLsizeiptr>(consistent.size() * sizeof(shared::ImportanceSample)),
@@ -335,26 +349,9 @@ TEST_CASE("VSGL cell footprints are unbiased: over every texel, sum_j P_j N Phi_
             totalFlux += flux;
             totalImportance += flux * view;
         }
-    gl::RenderTarget rsm = makeRSMLayoutTarget("concentrated RSM", false);
-    rsm.resize(size, size, 1);
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
-        glTextureSubImage3D(rsm.color(a).id(), 0, 0, 0, 0, size, size, 1, GL_RGBA, GL_FLOAT,
-                            level0[static_cast<std::size_t>(a)].data());
-    ComputePass downsample(test::shaders(), "rsm downsample", "passes/rsm_downsample.comp");
-    memoryBarrier(NextRead::TextureFetch);
-    downsampleRSMLayout(downsample, rsm);
+    const gl::RenderTarget rsm = uploadRSM("concentrated RSM", level0, size);
 
-    gl::TextureDesc importanceDesc;
-    importanceDesc.format = GL_R32F;
-    importanceDesc.width = size;
-    importanceDesc.height = size;
-    importanceDesc.levels = levels;
-    gl::Texture importanceMap("VSGL test concentrated importance", importanceDesc);
-    std::vector<float> importanceTexels;
-    for (const glm::vec4& v : importance[0]) importanceTexels.push_back(v.r);
-    glTextureSubImage2D(importanceMap.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, importanceTexels.data());
-    memoryBarrier(NextRead::Image);
-    ImportanceSampler(test::shaders()).buildMips(importanceMap, NextRead::TextureFetch);
+    const gl::Texture importanceMap = uploadImportance("VSGL test concentrated importance", importance[0], size, levels);
 
     std::vector<shared::ImportanceSample> everyTexel;
     for (int y = 0; y < size; ++y)
@@ -386,7 +383,6 @@ TEST_CASE("VSGL cell footprints are unbiased: over every texel, sum_j P_j N Phi_
     // k = 16: leaves from level 0 (the spots) to level 5 (the dim floor far from the view factor).
     const float k = 16.0f;
     generate.program().set("uSmoothness", k);
-    generate.program().set("uMaxLeaf", 12); // no cap
     // Runs: texel footprints; cell footprints; cell footprints with leaves capped at level 2
     // (vsgl.maxLeaf: the cells of one level still partition the map).
     double ratio[3] = {0.0, 0.0, 0.0};
