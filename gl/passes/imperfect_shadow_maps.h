@@ -31,7 +31,7 @@
 //  Lights: an SSBO of records of `stride` vec4s whose first two hold the xyz position and the xyz
 //  unit normal; the w of vec4 `validVec4` is 0 for an empty record, which gets an empty map
 //  (visible from everywhere): SMCIR's GpuVPL (3 vec4s, valid in the position's w: validVec4 0) and
-//  VSGL's VSGLight (6 vec4s, r^2 in the position's w, valid in the normal's: validVec4 1,
+//  VSGL's VSGLight (7 vec4s, r^2 in the position's w, valid in the normal's: validVec4 1,
 //  radius2Vec4 0). A light with a radius r_i (a VSGL stands for a footprint of RSM texels around its
 //  mean position) does not get the points within ownRadius x r_i: they are the surface it stands
 //  for, and where the footprint spans a convex edge its mean lies inside the object, whose walls
