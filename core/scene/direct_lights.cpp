@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/util/error.h"
+#include "glsl/shared/tonemap.h"
 
 namespace vplgi {
 
@@ -16,11 +17,6 @@ struct EmissiveTriangle {
     float area;         // [m^2]
     float power;        // luminance-weighted, used for allocation
 };
-
-float luminance(const glm::vec3& c)
-{
-    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-}
 
 std::vector<EmissiveTriangle> collectEmissiveTriangles(const Scene& scene)
 {
@@ -43,7 +39,7 @@ std::vector<EmissiveTriangle> collectEmissiveTriangles(const Scene& scene)
             tri.normal = cross / twiceArea;
             tri.area = 0.5f * twiceArea;
             tri.radiance = material.emission;
-            tri.power = luminance(material.emission) * tri.area;
+            tri.power = shared::luminanceRec709(material.emission) * tri.area;
             if (tri.power > 0.0f) triangles.push_back(tri);
         }
     }
@@ -159,7 +155,7 @@ std::vector<shared::PointEmitter> groupCosineEmitters(const DirectLightSet& ligh
     std::vector<double> weight(n);
     glm::dvec3 lower(1e30), upper(-1e30);
     for (std::size_t i = 0; i < n; ++i) {
-        weight[i] = std::max(1e-30, static_cast<double>(luminance(glm::vec3(samples[i]->intensity))));
+        weight[i] = std::max(1e-30, static_cast<double>(shared::luminanceRec709(glm::vec3(samples[i]->intensity))));
         lower = glm::min(lower, glm::dvec3(samples[i]->positionProfile));
         upper = glm::max(upper, glm::dvec3(samples[i]->positionProfile));
     }

@@ -20,6 +20,7 @@
 #include "core/util/params.h"
 #include "core/util/random.h"
 #include "core/scene/surface.h"
+#include "glsl/shared/tonemap.h"
 
 namespace vplgi {
 
@@ -132,11 +133,6 @@ Pcg32 sampleStream(std::uint32_t seed, std::uint32_t pixel, std::uint32_t sample
 
 // --- Small helpers -----------------------------------------------------------------------------
 
-float luminance(const glm::vec3& c)
-{
-    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-}
-
 float maxComponent(const glm::vec3& c)
 {
     return std::max(c.r, std::max(c.g, c.b));
@@ -172,9 +168,9 @@ float specularProbability(const shared::SurfaceMaterial& m, float NoV)
 {
     const glm::vec3 f0 = specularF0(m);
     if (f0.x + f0.y + f0.z <= 0.0f) return 0.0f; // evaluateBRDF is then exactly Lambert
-    const float diffuse = luminance((1.0f - m.metallic) * m.baseColor);
+    const float diffuse = shared::luminanceRec709((1.0f - m.metallic) * m.baseColor);
     if (diffuse <= 0.0f) return 1.0f;
-    const float specular = luminance(shared::fresnelSchlick(f0, NoV));
+    const float specular = shared::luminanceRec709(shared::fresnelSchlick(f0, NoV));
     return std::clamp(specular / (specular + diffuse), 0.1f, 0.9f);
 }
 
@@ -264,7 +260,7 @@ struct EmissiveTriangle {
     glm::vec3 normal{0.0f};   // unit, counter-clockwise side (the front); zero for degenerate ones
     glm::vec3 radiance{0.0f}; // material emission factor [W/(m^2 sr)]
     float area = 0.0f;        // [m^2]
-    float power = 0.0f;       // luminance(radiance) * area: the selection weight
+    float power = 0.0f;       // shared::luminanceRec709(radiance) * area: the selection weight
     int instance = -1;
     int triangle = -1;
     bool doubleSided = false; // emits on both sides
@@ -383,7 +379,7 @@ void Integrator::collectEmitters()
                 e.area = 0.5f * twiceArea;
             }
             e.radiance = material.emission;
-            e.power = luminance(material.emission) * e.area;
+            e.power = shared::luminanceRec709(material.emission) * e.area;
             e.instance = static_cast<int>(i);
             e.triangle = static_cast<int>(t);
             e.doubleSided = material.doubleSided;

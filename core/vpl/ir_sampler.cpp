@@ -13,6 +13,7 @@
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "core/util/random.h"
+#include "glsl/shared/tonemap.h"
 
 namespace vplgi {
 
@@ -36,11 +37,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr float kPi = 3.14159265358979323846f;
-
-float luminance(const glm::vec3& c)
-{
-    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-}
 
 Pcg32 pathStream(std::uint32_t seed, std::uint64_t frameKey, std::uint64_t path)
 {
@@ -75,7 +71,7 @@ struct IRSampler::Emitter {
     glm::vec3 position{0.0f};  // point, spot
     glm::vec3 axis{0.0f};      // spot axis, directional travel direction, triangle front normal (unit)
     glm::vec3 flux{0.0f};      // Phi [W], RGB (a triangle's with its untextured emission factor)
-    float power = 0.0f;        // luminance(flux): the selection weight
+    float power = 0.0f;        // shared::luminanceRec709(flux): the selection weight
     // Spot: the profile of glsl/shared/lights.h, t^2 with t = clamp((c - cosOuter) / ramp).
     float cosOuter = -1.0f;
     float ramp = 1.0f;         // max(cos inner - cos outer, 1e-4), as emitterProfile
@@ -133,7 +129,7 @@ IRSampler::IRSampler(const Scene& scene, const RayScene& rays, const IRParams& p
             e.area = 0.5f * twiceArea;
             e.sides = material.doubleSided ? 2.0f : 1.0f;
             e.flux = kPi * e.sides * e.area * material.emission;
-            e.power = luminance(e.flux);
+            e.power = shared::luminanceRec709(e.flux);
             e.instance = static_cast<int>(i);
             e.triangle = static_cast<int>(t);
             e.textured = material.emissionTexture.valid();
@@ -181,7 +177,7 @@ std::vector<IRSampler::Emitter> IRSampler::collectEmitters(const std::vector<Lig
             e.kind = Emitter::Kind::Point;
             e.flux = 4.0f * kPi * intensity;
         }
-        e.power = luminance(e.flux);
+        e.power = shared::luminanceRec709(e.flux);
         if (e.power > 0.0f) emitters.push_back(e);
     }
     for (const shared::DirectionalEmitter& d : direct.directionals) {
@@ -189,7 +185,7 @@ std::vector<IRSampler::Emitter> IRSampler::collectEmitters(const std::vector<Lig
         e.kind = Emitter::Kind::Directional;
         e.axis = glm::normalize(glm::vec3(d.direction));
         e.flux = kPi * mBoundsRadius * mBoundsRadius * glm::vec3(d.irradiance); // E through the disk
-        e.power = luminance(e.flux);
+        e.power = shared::luminanceRec709(e.flux);
         if (e.power > 0.0f) emitters.push_back(e);
     }
     emitters.insert(emitters.end(), mTriangles.begin(), mTriangles.end());
@@ -288,7 +284,7 @@ int IRSampler::tracePath(const std::vector<Emitter>& emitters, const std::vector
         }
         if (depth == mParams.bounces) break;
         // Russian roulette on the throughput of cosine sampling, t = rho_d.
-        const float q = std::min(1.0f, luminance(albedo));
+        const float q = std::min(1.0f, shared::luminanceRec709(albedo));
         if (!(q > 0.0f) || rng.uniform() >= q) break;
         alpha *= albedo / q;
         const glm::vec3 direction = cosineDirection(s.normal, rng.uniform(), rng.uniform());

@@ -20,6 +20,7 @@
 #include "core/util/params.h"
 #include "core/trace/path_tracer.h"
 #include "core/util/random.h"
+#include "glsl/shared/tonemap.h"
 
 namespace vplgi {
 
@@ -124,16 +125,11 @@ Pcg32 stream(std::uint32_t seed, std::uint64_t frame, std::uint64_t stage, std::
 
 // --- Small helpers -----------------------------------------------------------------------------
 
-float luminance(const glm::vec3& c)
-{
-    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-}
-
 // Eq. (6) by luminance: I(y) = L(y) / p(y). A point without a density estimate (no neighbours) is
 // infinitely strong when it reflects anything.
 float intensityOf(const glm::vec3& radiance, float density)
 {
-    const float L = luminance(radiance);
+    const float L = shared::luminanceRec709(radiance);
     if (density > 0.0f) return L / density;
     return L > 0.0f ? std::numeric_limits<float>::infinity() : 0.0f;
 }
@@ -180,7 +176,7 @@ struct SMCIRSampler::Candidate {
     std::uint32_t seed = 0;        // radiance seed
     glm::vec3 radiance{0.0f};
     float density = 0.0f;
-    float intensity = 0.0f;        // luminance(radiance) / density
+    float intensity = 0.0f;        // shared::luminanceRec709(radiance) / density
 };
 
 SMCIRSampler::SMCIRSampler(const Scene& scene, const RayScene& rays, const SMCIRParams& params)

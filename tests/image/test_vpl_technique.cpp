@@ -64,19 +64,6 @@ ImageRGBA32F clampedReference(const Scene& scene, Renderer& renderer, const Came
     return renderReference(scene, rays, camera, width, height, reference).image;
 }
 
-// Mean over pixels of |a - b| (luminance) relative to the mean luminance of b.
-double meanAbsoluteRelative(const ImageRGBA32F& a, const ImageRGBA32F& b)
-{
-    double sum = 0.0;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x) {
-            const float* p = a.at(x, y);
-            const float* q = b.at(x, y);
-            sum += std::abs(0.2126 * (p[0] - q[0]) + 0.7152 * (p[1] - q[1]) + 0.0722 * (p[2] - q[2]));
-        }
-    return sum / (static_cast<double>(a.width) * a.height) / meanLuminance(b);
-}
-
 // Texels of valid slots' paraboloid maps that differ from a full rebuild of the rendered set.
 std::size_t differingMapTexels(Renderer& renderer)
 {
@@ -130,7 +117,7 @@ TEST_CASE("smcir: exhaustive shadow-map shading against the ray-traced gather of
     gather.clampGeometry = test::vplClampGeometry(rays, 256);
     const ImageRGBA32F cpu = renderVPLGather(scene, rays, camera, width, height, gpu.set, gather);
     const double meanError = meanLuminance(gpu.indirect) / meanLuminance(cpu) - 1.0;
-    const double pixelError = meanAbsoluteRelative(gpu.indirect, cpu);
+    const double pixelError = test::relativeL1(gpu.indirect, cpu);
     MEASURED("smcir cornell, 128^2 paraboloid maps vs ray-traced visibility (same 256 VPLs): mean "
              << meanError << ", mean |pixel difference| / mean " << pixelError);
     CHECK(meanLuminance(cpu) > 0.0);
@@ -600,7 +587,7 @@ TEST_CASE("smcir on the shared CornellBox.glb (millimetres): shadow maps agree w
     const ImageRGBA32F truth = renderReference(scene, rays, camera, width, height, reference).image;
 
     const double againstRays = meanLuminance(gpu.indirect) / meanLuminance(cpu) - 1.0;
-    const double pixelsAgainstRays = meanAbsoluteRelative(gpu.indirect, cpu);
+    const double pixelsAgainstRays = test::relativeL1(gpu.indirect, cpu);
     const double againstPath = meanLuminance(gpu.indirect) / meanLuminance(truth) - 1.0;
     MEASURED("smcir on CornellBox.glb (I = 512): mean vs the same VPLs ray-traced " << againstRays
              << " (mean |pixel difference| / mean " << pixelsAgainstRays << "), mean vs the path tracer "
