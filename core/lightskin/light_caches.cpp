@@ -818,6 +818,7 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
             for (std::size_t k = front; k < front + geometry.size(); ++k) {
                 LightCache back = set.caches[k];
                 back.normal = -back.normal;
+                back.backTwin = 1.0f;
                 set.caches.push_back(back);
             }
         }

@@ -69,7 +69,7 @@ struct LightCache { // world space; four vec4 rows, std430 as it is (64 bytes)
     glm::vec3 diffuse{0.0f};
     float metallic = 0.0f; // (1 - metallic) baseColor (see below)
     glm::vec3 specular{0.0f};
-    float pad = 0.0f; // F0 = mix(0.04 specular, baseColor, metallic)
+    float backTwin = 0.0f; // F0 = mix(0.04 specular, baseColor, metallic); 1: the second cache of a double-sided pair
 };
 // clang-format on
 static_assert(sizeof(LightCache) == 64, "LightCache is four vec4 rows");

@@ -1108,8 +1108,6 @@ Scene makeGlossy()
     return scene;
 }
 
-} // namespace
-
 // ---------------------------------------------------------------------------------------------
 // sealed (conform's leak test): a room lit through a roof window beside a closed room
 
@@ -1216,9 +1214,47 @@ Scene makeSealed(const std::string& light)
     return scene;
 }
 
+// ---------------------------------------------------------------------------------------------
+// board (LightSkin's occlusion, issue "LightSkin's indirect shadows"): a broad sunlit floor, a wall
+// at its edge that the sun does not reach, and a 2.5 m board standing 2 m in front of the wall.
+// Below the board's top the wall sees the floor beyond the board only through the board: its
+// one-bounce light comes from the 2 m strip in front of it (about half of what the open floor
+// would give at 1 m height, 2D view factors sin(atan(h/2))/2 of 1/2). The sun travels along the
+// board's plane, so the board casts no direct shadow on the strip and the wall gets no direct light.
+
+Scene makeBoard()
+{
+    Scene scene = newScene("board");
+    const int grey = addMaterial(scene, "grey", glm::vec3(0.7f));
+    const float cell = 0.5f;
+    Mesh ground = newMesh("floor", grey);
+    addRect(ground, glm::vec3(0.0f, 0.0f, -12.0f), glm::vec3(0.0f, 0.0f, 24.0f), glm::vec3(24.0f, 0.0f, 0.0f), cell);
+    Mesh wall = newMesh("wall", grey); // x = 0, facing +x
+    addRect(wall, glm::vec3(0.0f, 0.0f, -12.0f), glm::vec3(0.0f, 4.0f, 0.0f), glm::vec3(0.0f, 0.0f, 24.0f), cell);
+    Mesh board = newMesh("board", grey); // 12 m long, 2.5 m high, 10 cm thick
+    addBox(board, glm::vec3(1.95f, 0.0f, -6.0f), glm::vec3(2.05f, 2.5f, 6.0f), cell);
+    for (Mesh* mesh : {&ground, &wall, &board}) placeMesh(scene, std::move(*mesh));
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -0.3f)); // no x component: parallel to wall and board
+    sun.intensity = 3.0f;
+    scene.lights.push_back(sun);
+    // "default": between the board and the wall, looking at the wall the board shades (every
+    // pixel in the board's indirect shadow); "open": the same view of the wall past the board's end.
+    scene.cameras.push_back(makeCamera("default", glm::vec3(1.6f, 1.25f, 0.0f), glm::vec3(0.0f, 1.25f, 0.0f), 60.0f,
+                                       0.05f, 60.0f));
+    scene.cameras.push_back(makeCamera("open", glm::vec3(1.6f, 1.25f, 9.0f), glm::vec3(0.0f, 1.25f, 9.0f), 60.0f,
+                                       0.05f, 60.0f));
+    scene.validate();
+    return scene;
+}
+
+} // namespace
+
 std::vector<std::string> builtinSceneNames()
 {
-    return {"canyon", "caustics", "cornell", "furnace", "glossy", "maze", "sealed", "sealed-emissive", "sealed-point",
+    return {"board", "canyon", "caustics", "cornell", "furnace", "glossy", "maze", "sealed", "sealed-emissive", "sealed-point",
             "sealed-spot", "street"};
 }
 
@@ -1230,6 +1266,7 @@ bool isBuiltinScene(const std::string& name)
 
 Scene makeBuiltinScene(const std::string& name)
 {
+    if (name == "board") return makeBoard();
     if (name == "canyon") return makeCanyon();
     if (name == "caustics") return makeCaustics(CausticsParams{});
     if (name == "cornell") return makeCornell();

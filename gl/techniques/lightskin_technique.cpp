@@ -46,6 +46,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     v.field("lightskin.interpolationExponent", interpolationExponent, 0.0f, 16.0f,
             "p of eq. (8): the distance falloff of the cache weights (the paper gives none; 1 = linear)");
     v.field("lightskin.occlusion", occlusion, "indirect occlusion by double projection (section 3)");
+    v.field("lightskin.occlusionCells", occlusionCells,
+            "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
+            "false: one sphere per proxy (the paper)");
     v.field("lightskin.exactArea", exactArea,
             "VAL area: the texel's tilted footprint (MATH.md 9.1) instead of eq. (1)'s disk across the light's view");
     caches.visitParams(v);
@@ -112,6 +115,8 @@ void LightSkinTechnique::uploadCaches()
         mIndexBuffer.upload(0, static_cast<GLsizeiptr>(grid.cacheIndices.size() * sizeof(std::uint32_t)),
                             grid.cacheIndices.data());
     mProxies = gl::Buffer("proxy lights", count * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
+    mOcclusionTargets = gl::Buffer("occlusion targets", count * shared::kOcclusionCells *
+                                                            static_cast<GLsizeiptr>(sizeof(shared::OcclusionTarget)));
 }
 
 void LightSkinTechnique::reloadShaders(const gl::ShaderLoader& shaders)
@@ -260,8 +265,10 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         glm::ivec3 invocations = perCacheInvocations(cacheCount);
         invocations.x *= chunks;
         mProxyPass.dispatch(invocations, NextRead::StorageBuffer);
+        bindStorageBuffer(shared::kBindingOcclusionTargets, mOcclusionTargets);
         mFinalizePass.program().set("uCacheCount", cacheCount);
         mFinalizePass.program().set("uChunks", chunks);
+        mFinalizePass.program().set("uOcclusionCells", mParams.occlusionCells ? 1 : 0);
         mFinalizePass.dispatch(cacheCount, 1, NextRead::StorageBuffer);
     }
     if (mParams.occlusion) {

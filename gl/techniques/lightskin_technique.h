@@ -76,6 +76,7 @@ struct LightSkinParams {
     bool fluxWeights = false;      // MATH.md 9.3: weight eq. (5)/(13) by the VAL's flux too (not in the paper)
     float interpolationExponent = 1.0f; // p of eq. (8) (the paper gives none; MATH.md 9.5)
     bool occlusion = true;         // double projection (section 3)
+    bool occlusionCells = true;    // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
     bool exactArea = false;        // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
     std::uint32_t seed = 1;
     bool animateSeed = false;
@@ -137,6 +138,7 @@ private:
     gl::Buffer mIndexBuffer;     // uint[entries]
     gl::Buffer mProxies;         // ProxyLight[caches]
     gl::Buffer mProxySums;       // vec4[caches x chunks x kProxySumVec4s]
+    gl::Buffer mOcclusionTargets; // OcclusionTarget[caches x kOcclusionCells]
     gl::Buffer mViewSamples;     // ViewSample[N_VS]
     gl::Buffer mLayerViews;      // RSMLayerView[layers]
     gl::Texture mImportance;     // R32F, (rsm.size x layers) x rsm.size

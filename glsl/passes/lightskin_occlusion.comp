@@ -5,6 +5,9 @@
 // around the cache's normal (a projected solid angle, i.e. pi times the form factor), turned into
 // squares of equal area, and the overlap of the cache squares with the proxy's square is the
 // occluded fraction (clamped to 1). The result multiplies the proxy's flux (its w).
+// With lightskin.occlusionCells (the default; not in the paper) the spheres are those of the VALs
+// in each of five cells of the cache's unit disk, and a proxy's visibility is the radiance-weighted
+// mean over the cells (glsl/shared/lightskin.h, occlusionCell, says why).
 // One work-group per cache, every 64th other cache per invocation, a fixed-order reduction.
 #include "../shared/bindings.h"
 #include "../shared/lightskin.h"
@@ -14,10 +17,11 @@ layout(local_size_x = kLightSkinGroupSize) in;
 
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
 layout(std430, binding = kBindingProxyLights) buffer Proxies { ProxyLight proxies[]; };
+layout(std430, binding = kBindingOcclusionTargets) readonly buffer Targets { OcclusionTarget targets[]; };
 
 uniform int uCacheCount;
 
-shared float sOverlap[2][kLightSkinGroupSize];
+shared float sOverlap[kOcclusionCells][kLightSkinGroupSize];
 
 void main()
 {
@@ -27,50 +31,66 @@ void main()
     GpuLightCache c = caches[cache];
     vec3 cp = c.positionArea.xyz;
     vec3 cn = c.normalRoughness.xyz;
-    ProxyLight proxy = proxies[cache];
     mat3 diskFrame = occlusionFrame(cn);
-    vec4 spheres[2] = vec4[2](proxy.diffusePositionRadius, proxy.glossyPositionRadius);
-    vec3 proxySquares[2]; // xy centre on the unit disk, z area
-    float proxyDistance2[2];
-    for (int p = 0; p < 2; ++p) {
-        vec3 toProxy = spheres[p].xyz - cp;
-        proxySquares[p] = projectSphereToUnitDisk(toProxy, spheres[p].w, diskFrame);
-        // Occluders lie between the cache and the near side of the proxy's sphere, not inside it:
-        // the caches on the lit surfaces that the proxy stands for are its light, not its blockers
-        // (not in the paper; docs/lightskin.md has the measurement behind it).
-        float nearSide = max(length(toProxy) - spheres[p].w, 0.0);
-        proxyDistance2[p] = nearSide * nearSide;
+    // What occluders are tested against: one target per occlusion cell, or the two proxies'
+    // spheres (the paper's); lightskin_proxy_finalize.comp writes them.
+    vec3 centres[kOcclusionCells];
+    vec2 shares[kOcclusionCells];
+    vec3 squares[kOcclusionCells]; // xy centre on the unit disk, z area
+    float near2[kOcclusionCells];  // occluders count nearer than this [m^2]
+    for (int g = 0; g < kOcclusionCells; ++g) {
+        OcclusionTarget target = targets[cache * kOcclusionCells + g];
+        centres[g] = target.centre.xyz;
+        shares[g] = target.shares.xy;
+        squares[g] = target.square.xyz;
+        near2[g] = shares[g] != vec2(0.0) ? target.square.w * target.square.w : 0.0; // empty: no occluder
     }
 
-    float overlap[2] = float[2](0.0, 0.0);
+    float overlap[kOcclusionCells];
+    for (int g = 0; g < kOcclusionCells; ++g) overlap[g] = 0.0;
     for (int j = int(lane); j < uCacheCount; j += kLightSkinGroupSize) {
         GpuLightCache o = caches[j];
-        bool candidates[2];
-        // A disk can only block the segment from the cache to the proxy if the segment crosses the
-        // disk's plane: the cache and the proxy's centre on opposite sides (not in the paper; without
-        // it the floor between a lit floor patch and a wall occludes the wall's light,
-        // docs/lightskin.md).
+        // The second cache of a double-sided pair sits on its twin with the same disk: one of them
+        // occludes (not in the paper; both would count the surface twice).
+        if (o.specular.w != 0.0) continue;
+        vec3 op = o.positionArea.xyz;
         vec3 on = o.normalRoughness.xyz;
-        float cacheSide = dot(on, cp - o.positionArea.xyz);
-        for (int p = 0; p < 2; ++p)
-            candidates[p] = isOccluderCandidate(cache, cp, cn, j, o.positionArea.xyz, proxyDistance2[p]) &&
-                            cacheSide * dot(on, spheres[p].xyz - o.positionArea.xyz) < 0.0;
-        if (!candidates[0] && !candidates[1]) continue;
-        vec3 square = projectDiskToUnitDisk(o.positionArea.xyz - cp, o.normalRoughness.xyz, o.positionArea.w, diskFrame);
-        for (int p = 0; p < 2; ++p)
-            if (candidates[p]) overlap[p] += squareOverlap(proxySquares[p], square);
+        // A disk can only block the segment from the cache to its light if the segment crosses the
+        // disk's plane: the cache and the light's centre on opposite sides (not in the paper;
+        // without it the floor between a lit floor patch and a wall occludes the wall's light,
+        // docs/lightskin.md), each by more than kOccluderPlaneMargin of the distance to the disk
+        // (a light on the floor's own plane is not behind it: float noise decided that side and
+        // took 7% of an open wall's light).
+        float cacheSide = dot(on, cp - op);
+        float margin = kOccluderPlaneMargin * length(op - cp);
+        bool anyCandidate = false;
+        bool candidates[kOcclusionCells];
+        for (int g = 0; g < kOcclusionCells; ++g) {
+            float lightSide = dot(on, centres[g] - op);
+            candidates[g] = isOccluderCandidate(cache, cp, cn, j, op, near2[g]) && cacheSide * lightSide < 0.0 &&
+                            min(abs(cacheSide), abs(lightSide)) > margin;
+            anyCandidate = anyCandidate || candidates[g];
+        }
+        if (!anyCandidate) continue;
+        vec3 square = projectDiskToUnitDisk(op - cp, on, o.positionArea.w, diskFrame);
+        for (int g = 0; g < kOcclusionCells; ++g)
+            if (candidates[g]) overlap[g] += squareOverlap(squares[g], square);
     }
-    sOverlap[0][lane] = overlap[0];
-    sOverlap[1][lane] = overlap[1];
+    for (int g = 0; g < kOcclusionCells; ++g) sOverlap[g][lane] = overlap[g];
     barrier();
     for (uint stride = uint(kLightSkinGroupSize) / 2u; stride > 0u; stride /= 2u) {
-        if (lane < stride) {
-            sOverlap[0][lane] += sOverlap[0][lane + stride];
-            sOverlap[1][lane] += sOverlap[1][lane + stride];
-        }
+        if (lane < stride)
+            for (int g = 0; g < kOcclusionCells; ++g) sOverlap[g][lane] += sOverlap[g][lane + stride];
         barrier();
     }
     if (lane != 0u) return;
-    proxies[cache].diffuseFlux.w = 1.0 - occlusionFromOverlap(sOverlap[0][0], proxySquares[0].z);
-    proxies[cache].glossyFlux.w = 1.0 - occlusionFromOverlap(sOverlap[1][0], proxySquares[1].z);
+    // Each proxy's visibility: the share-weighted mean of its spheres' 1 - occlusion.
+    vec2 visible = vec2(0.0), total = vec2(0.0);
+    for (int g = 0; g < kOcclusionCells; ++g) {
+        float sphereVisible = 1.0 - occlusionFromOverlap(sOverlap[g][0], squares[g].z);
+        visible += shares[g] * sphereVisible;
+        total += shares[g];
+    }
+    proxies[cache].diffuseFlux.w = total.x > 0.0 ? visible.x / total.x : 1.0;
+    proxies[cache].glossyFlux.w = total.y > 0.0 ? visible.y / total.y : 1.0;
 }

@@ -45,9 +45,8 @@ uniform float uEpsilon;      // epsilon_p of eq. (6)
 uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too (MATH.md 9.3 option)
 uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
 
-// Per proxy: sum w, sum w v (3), sum w v^2 (3), radiance sum (3), v = x_l - c.
-const int kSums = 10; // per proxy: 2 kSums floats = kProxySumVec4s vec4s
-shared float sSums[2 * kSums][kLightSkinGroupSize];
+// The sums per proxy and per occlusion cell (lightskin.h, occlusionCell) in lightskin_gpu.h's order.
+shared float sSums[kProxySumCount][kLightSkinGroupSize];
 
 void main()
 {
@@ -61,8 +60,9 @@ void main()
     float k = phongExponentFromRoughness(alpha);
     vec3 view = normalize(frame.cameraPosition.xyz - cp);
 
-    float sums[2 * kSums];
-    for (int s = 0; s < 2 * kSums; ++s) sums[s] = 0.0;
+    mat3 diskFrame = occlusionFrame(cn);
+    float sums[kProxySumCount];
+    for (int s = 0; s < kProxySumCount; ++s) sums[s] = 0.0;
     int chunk = int(gl_WorkGroupID.x);
     int chunkEnd = min((chunk + 1) * uChunkSize, uValCount);
     for (int j = chunk * uChunkSize + int(lane); j < chunkEnd; j += kLightSkinGroupSize) {
@@ -131,17 +131,31 @@ void main()
         sums[11] += wg * v.x; sums[12] += wg * v.y; sums[13] += wg * v.z;
         sums[14] += wg * v.x * v.x; sums[15] += wg * v.y * v.y; sums[16] += wg * v.z * v.z;
         sums[17] += radiance.r * lobe; sums[18] += radiance.g * lobe; sums[19] += radiance.b * lobe;
+        int at = kProxyCellFirst + occlusionCell(toLight, diskFrame) * kProxyCellSums;
+        float radianceLuminance = luminanceRec709(radiance);
+        vec2 disk = vec2(dot(toLight, diskFrame[0]), dot(toLight, diskFrame[1]));
+        float distance = sqrt(d2);
+        sums[at] += wd;
+        sums[at + 1] += wd * disk.x; sums[at + 2] += wd * disk.y;
+        sums[at + 3] += wd * disk.x * disk.x; sums[at + 4] += wd * disk.y * disk.y;
+        sums[at + 5] += wd * v.x; sums[at + 6] += wd * v.y; sums[at + 7] += wd * v.z;
+        sums[at + 8] += wd * distance;
+        sums[at + 9] += wd * d2;
+        sums[at + 10] += radianceLuminance;
+        sums[at + 11] += radianceLuminance * lobe; // cos^k theta_e: the glossy proxy's share
     }
-    for (int s = 0; s < 2 * kSums; ++s) sSums[s][lane] = sums[s];
+    for (int s = 0; s < kProxySumCount; ++s) sSums[s][lane] = sums[s];
     barrier();
     for (uint stride = uint(kLightSkinGroupSize) / 2u; stride > 0u; stride /= 2u) {
         if (lane < stride)
-            for (int s = 0; s < 2 * kSums; ++s) sSums[s][lane] += sSums[s][lane + stride];
+            for (int s = 0; s < kProxySumCount; ++s)
+                sSums[s][lane] += sSums[s][lane + stride];
         barrier();
     }
     if (lane != 0u) return;
     int chunks = int(gl_NumWorkGroups.x);
     int at = (cache * chunks + chunk) * kProxySumVec4s;
-    for (int v = 0; v < kProxySumVec4s; ++v)
+    for (int v = 0; v < kProxySumVec4s; ++v) {
         partialSums[at + v] = vec4(sSums[4 * v][0], sSums[4 * v + 1][0], sSums[4 * v + 2][0], sSums[4 * v + 3][0]);
+    }
 }

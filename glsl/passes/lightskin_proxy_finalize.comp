@@ -5,7 +5,9 @@
 //   extent    the bounding-sphere radius from the weighted positions' per-axis deviation
 //   flux      Phi_p = 4 pi L_o(c) |x_p - c|^2 / (f_r(c, w, w_i) cos+)  eq. (7)
 // with the colours that cancelled left out (lightskin_proxy.comp says which). Visibility starts at
-// 1; lightskin_occlusion.comp lowers it.
+// 1; lightskin_occlusion.comp lowers it, testing occluders against the targets written here: one per
+// occlusion cell (uOcclusionCells, not in the paper; lightskin.h says why) or the two proxies'
+// spheres (the paper).
 #include "../shared/bindings.h"
 #include "../shared/lightskin.h"
 #include "../shared/lightskin_gpu.h"
@@ -16,9 +18,11 @@ layout(local_size_x = 64) in;
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
 layout(std430, binding = kBindingProxySums) readonly buffer Sums { vec4 partialSums[]; };
 layout(std430, binding = kBindingProxyLights) writeonly buffer Proxies { ProxyLight proxies[]; };
+layout(std430, binding = kBindingOcclusionTargets) writeonly buffer Targets { OcclusionTarget targets[]; };
 
 uniform int uCacheCount;
 uniform int uChunks;
+uniform int uOcclusionCells; // 1: a target per occlusion cell; 0: the paper's, the proxies' spheres
 
 void main()
 {
@@ -26,18 +30,16 @@ void main()
     if (cache >= uCacheCount) return;
     vec4 sums[kProxySumVec4s];
     for (int v = 0; v < kProxySumVec4s; ++v) sums[v] = vec4(0.0);
+    // The sums in the order lightskin_proxy.comp wrote them (lightskin_gpu.h).
+    float s[kProxySumCount];
+    for (int i = 0; i < kProxySumCount; ++i) s[i] = 0.0;
     for (int chunk = 0; chunk < uChunks; ++chunk) {
         int at = (cache * uChunks + chunk) * kProxySumVec4s;
-        sums[0] += partialSums[at];
-        sums[1] += partialSums[at + 1];
-        sums[2] += partialSums[at + 2];
-        sums[3] += partialSums[at + 3];
-        sums[4] += partialSums[at + 4];
+        for (int v = 0; v < kProxySumVec4s; ++v) {
+            vec4 four = partialSums[at + v];
+            for (int i = 0; i < 4; ++i) s[4 * v + i] += four[i];
+        }
     }
-    // The 20 sums in the order lightskin_proxy.comp wrote them.
-    float s[20] = float[20](sums[0].x, sums[0].y, sums[0].z, sums[0].w, sums[1].x, sums[1].y, sums[1].z, sums[1].w,
-                            sums[2].x, sums[2].y, sums[2].z, sums[2].w, sums[3].x, sums[3].y, sums[3].z, sums[3].w,
-                            sums[4].x, sums[4].y, sums[4].z, sums[4].w);
     GpuLightCache c = caches[cache];
     vec3 cp = c.positionArea.xyz;
     vec3 cn = c.normalRoughness.xyz;
@@ -70,4 +72,33 @@ void main()
         }
     }
     proxies[cache] = proxy;
+
+    mat3 diskFrame = occlusionFrame(cn);
+    for (int g = 0; g < kOcclusionCells; ++g) {
+        OcclusionTarget target;
+        target.square = vec4(0.0);
+        target.centre = vec4(cp + cn, 0.0);
+        target.shares = vec4(0.0);
+        if (uOcclusionCells != 0) {
+            int o = kProxyCellFirst + g * kProxyCellSums;
+            float w = s[o];
+            if (w > 0.0) {
+                target.square = vec4(occlusionCellSquare(w, vec2(s[o + 1], s[o + 2]), vec2(s[o + 3], s[o + 4])),
+                                     occlusionCellNearSide(w, s[o + 8], s[o + 9]));
+                target.centre = vec4(cp + vec3(s[o + 5], s[o + 6], s[o + 7]) / w, 0.0);
+                target.shares = vec4(s[o + 10], s[o + 11], 0.0, 0.0);
+            }
+        } else if (g < 2) {
+            // The paper: the proxy's bounding sphere; occluders between the cache and its near side,
+            // not inside it: the caches on the lit surfaces that the proxy stands for are its light,
+            // not its blockers (not in the paper; docs/lightskin.md has the measurement behind it).
+            vec4 sphere = g == 0 ? proxy.diffusePositionRadius : proxy.glossyPositionRadius;
+            vec3 toSphere = sphere.xyz - cp;
+            target.square = vec4(projectSphereToUnitDisk(toSphere, sphere.w, diskFrame),
+                                 max(length(toSphere) - sphere.w, 0.0));
+            target.centre = vec4(sphere.xyz, 0.0);
+            target.shares = g == 0 ? vec4(1.0, 0.0, 0.0, 0.0) : vec4(0.0, 1.0, 0.0, 0.0);
+        }
+        targets[cache * kOcclusionCells + g] = target;
+    }
 }

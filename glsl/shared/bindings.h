@@ -43,6 +43,7 @@ VPLGI_CONST int kBindingProxyLights = 20;        // SSBO ProxyLight[]: per cache
 VPLGI_CONST int kBindingViewSamples = 21;        // SSBO ViewSample[]: G-buffer samples at Halton points
 VPLGI_CONST int kBindingRSMLayerViews = 22;      // SSBO RSMLayerView[]: each RSM layer's depth row and texel size
 VPLGI_CONST int kBindingProxySums = 23;          // SSBO vec4[]: the proxy pass's sums per (cache, chunk of VALs)
+VPLGI_CONST int kBindingOcclusionTargets = 24;   // SSBO OcclusionTarget[]: kOcclusionCells per cache
 
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler

@@ -364,6 +364,60 @@ VPLGI_FUNC float squareOverlap(vec3 a, vec3 b)
     return max(overlapX, 0.0f) * max(overlapY, 0.0f);
 }
 
+// The occlusion cells (not in the paper; issue "LightSkin's indirect shadows", part 1). One sphere per
+// proxy cannot stand for VALs spread over a broad floor: their weighted mean lies near the cache,
+// the sphere (2 sigma) contains the cache, and nothing between them can occlude it (on the `board`
+// scene occlusion changed nothing, docs/lightskin.md). So the VALs are also summed per cell of the
+// receiving cache's unit disk (Nusselt's projection, the one the double projection uses): a
+// central disk of radius 1/sqrt(5) and four quadrants around it, each 1/5 of the disk, i.e. of the
+// cosine-weighted hemisphere (tests/cpu/test_lightskin_math.cpp checks the fifths). A cell's light
+// goes to the unit disk directly, not through a sphere: its square is centred on the weighted mean
+// of its VALs' disk coordinates with the area pi (2 sigma_max)^2 of their spread there (the proxy
+// sphere's full-width reading, on the disk), occluders count when they are nearer than
+// occlusionCellNearSide, and the occluder-plane test takes the weighted mean position of the
+// cell's VALs. The proxy's visibility is the radiance-weighted mean of its cells' visibilities.
+VPLGI_CONST float kOcclusionCentreRadius2 = 0.2f; // (1/sqrt 5)^2: the centre cell's radius squared
+
+// The cell of unit direction w (from the cache) on the unit disk of `frame` (occlusionFrame): 0 the
+// centre, 1-4 the quadrants around +t, +b, -t, -b. Directions below the horizon go to the quadrant of
+// their projection too (their form factor is 0, so they only carry eq. (6)'s epsilon).
+VPLGI_FUNC int occlusionCell(vec3 w, mat3 frame)
+{
+    float u = dot(w, frame[0]);
+    float v = dot(w, frame[1]);
+    if (u * u + v * v < kOcclusionCentreRadius2) return 0;
+    if (abs(u) >= abs(v)) return u >= 0.0f ? 1 : 3;
+    return v >= 0.0f ? 2 : 4;
+}
+
+// A cell's square on the unit disk from its VALs' weighted moments of the disk coordinates (u, v)
+// (weightedSum: sum w (u, v); weightedSquaredSum: sum w (u^2, v^2)): xy the mean, z the area
+// pi (2 sigma_max)^2, at most pi (VALs uniform on a disk of radius R on the unit disk have sigma R/2
+// per axis, so the area is the disk's). (0, 0, 0) without weight.
+VPLGI_FUNC vec3 occlusionCellSquare(float weightSum, vec2 weightedSum, vec2 weightedSquaredSum)
+{
+    if (!(weightSum > 0.0f)) return vec3(0.0f);
+    vec2 mean = weightedSum / weightSum;
+    vec2 variance = max(weightedSquaredSum / weightSum - mean * mean, vec2(0.0f));
+    return vec3(mean, min(4.0f * kPi * max(variance.x, variance.y), kPi));
+}
+
+// The occluder-plane test's margin, relative to the distance from the cache to the occluder (1 mm at
+// 1 m: far above float noise at open-world coordinates of 1 km, 1e-4 m).
+VPLGI_CONST float kOccluderPlaneMargin = 1.0e-3f;
+
+// How near an occluder must be to block a cell's light: the weighted mean distance of its VALs less
+// two standard deviations, but at least half the mean (a cell's VALs can span metres to tens of
+// metres along its directions; a sphere's near side would then be the cache itself). Arguments are
+// the weighted sums of |v| and |v|^2 [m, m^2] and the weight.
+VPLGI_FUNC float occlusionCellNearSide(float weightSum, float weightedDistanceSum, float weightedDistance2Sum)
+{
+    if (!(weightSum > 0.0f)) return 0.0f;
+    float mean = weightedDistanceSum / weightSum;
+    float sigma = sqrt(max(weightedDistance2Sum / weightSum - mean * mean, 0.0f));
+    return max(mean - 2.0f * sigma, 0.5f * mean);
+}
+
 // Which caches can occlude the proxy light of the receiving cache: not the cache itself, in its
 // upper hemisphere (n_c.(o - c) > 0) and closer to it than the proxy light (|o - c|^2 < proxyDistance2,
 // the squared distance from the cache to the proxy light's position).

@@ -12,7 +12,7 @@ struct GpuLightCache {
     vec4 positionArea;    // xyz world position [m], w the surface area it represents [m^2]
     vec4 normalRoughness; // xyz unit normal, w mean perceptual roughness
     vec4 diffuseMetallic; // rgb mean diffuse reflectance, w mean metallic
-    vec4 specular;        // rgb mean F0
+    vec4 specular;        // rgb mean F0, w 1 for the second cache of a double-sided pair (its twin's copy)
 };
 
 // The two proxy lights of a cache (section 3, "Proxy Lights Generation"): isotropic point lights
@@ -22,6 +22,16 @@ struct ProxyLight {
     vec4 diffuseFlux;           // rgb flux Phi_p (eq. 7) [W], w visibility 1 - occlusion
     vec4 glossyPositionRadius;
     vec4 glossyFlux;
+};
+
+// What the occlusion pass tests occluders against, kOcclusionCells per cache (glsl/shared/
+// lightskin.h, occlusionCell): with lightskin.occlusionCells, the VALs of one cell of the cache's
+// unit disk; without, the paper's spheres (the diffuse proxy's with shares (1, 0), the glossy one's
+// with (0, 1), the rest empty), projected by projectSphereToUnitDisk.
+struct OcclusionTarget {
+    vec4 square;  // xy centre on the cache's unit disk, z area there, w the distance within which occluders count [m]
+    vec4 centre;  // xyz a point of the light (for the occluder-plane test) [m], w 0
+    vec4 shares;  // x the share of the diffuse radiance, y of the glossy (unnormalised), zw 0
 };
 
 // A camera G-buffer sample at a Halton point (eq. 10's view samples).
@@ -37,7 +47,16 @@ struct RSMLayerView {
                    // y 1 for an orthographic (directional) layer, zw unused
 };
 
-VPLGI_CONST int kProxySumVec4s = 5;        // the proxy pass's 20 sums per (cache, chunk) (lightskin_proxy.comp)
+// The proxy pass's sums per (cache, chunk) (lightskin_proxy.comp), in this order: 10 per proxy
+// (sum w, sum w v (3), sum w v^2 (3), radiance (3); v = x_l - c), then 12 per occlusion cell (sum w_d,
+// sum w_d (u, v) and sum w_d (u^2, v^2) of the VAL's coordinates on the cache's unit disk, sum w_d v
+// (3), sum w_d |v| and sum w_d |v|^2, the luminance of the diffuse and of the glossy radiance).
+VPLGI_CONST int kOcclusionCells = 5; // cells of a cache's unit disk (glsl/shared/lightskin.h, occlusionCell)
+VPLGI_CONST int kProxySums = 10;
+VPLGI_CONST int kProxyCellFirst = 2 * kProxySums;
+VPLGI_CONST int kProxyCellSums = 12;
+VPLGI_CONST int kProxySumCount = kProxyCellFirst + kOcclusionCells * kProxyCellSums; // 80
+VPLGI_CONST int kProxySumVec4s = kProxySumCount / 4;
 VPLGI_CONST int kLightSkinGroupSize = 64;   // invocations per cache in the proxy and occlusion passes
 VPLGI_CONST int kLightSkinGroupRows = 32768; // caches per dispatch row (y); more go to z
 
@@ -46,6 +65,7 @@ VPLGI_SHARED_END
 #ifdef __cplusplus
 static_assert(sizeof(vplgi::shared::GpuLightCache) == 64, "GpuLightCache must match std430");
 static_assert(sizeof(vplgi::shared::ProxyLight) == 64, "ProxyLight must match std430");
+static_assert(sizeof(vplgi::shared::OcclusionTarget) == 48, "OcclusionTarget must match std430");
 static_assert(sizeof(vplgi::shared::ViewSample) == 32, "ViewSample must match std430");
 static_assert(sizeof(vplgi::shared::RSMLayerView) == 32, "RSMLayerView must match std430");
 #endif
