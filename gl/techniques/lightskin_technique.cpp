@@ -2,13 +2,16 @@
 
 #include <algorithm>
 
+#include "core/lightskin/traced_visibility.h"
 #include "core/util/content_hash.h"
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
 #include "glsl/shared/lightskin_gpu.h"
+#include "glsl/shared/normals.h"
 #include "glsl/shared/rsm.h"
+#include "glsl/shared/tonemap.h"
 
 namespace vplgi {
 
@@ -49,6 +52,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     v.field("lightskin.occlusionCells", occlusionCells,
             "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
             "false: one sphere per proxy (the paper)");
+    v.field("lightskin.tracedOcclusion", tracedOcclusion,
+            "each cache's visibility traced with Embree instead (the reference for the double projection; "
+            "CPU, not real-time; not in the paper)");
     v.field("lightskin.exactArea", exactArea,
             "VAL area: the texel's tilted footprint (MATH.md 9.1) instead of eq. (1)'s disk across the light's view");
     caches.visitParams(v);
@@ -84,6 +90,7 @@ void LightSkinTechnique::setScene(const SceneContext& context)
 {
     mScene = &context.scene;
     mGpuScene = &context.gpuScene;
+    mRays = &context.rays;
     mProgress = context.progress;
     createPasses(context.shaders);
     mEmptyVertexArray = gl::VertexArray("LightSkin cache points");
@@ -271,7 +278,10 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         mFinalizePass.program().set("uOcclusionCells", mParams.occlusionCells ? 1 : 0);
         mFinalizePass.dispatch(cacheCount, 1, NextRead::StorageBuffer);
     }
-    if (mParams.occlusion) {
+    if (mParams.tracedOcclusion) {
+        gl::PassTimer::Scope scope(frame.timer, "occlusion (traced)");
+        traceOcclusion(size, layers);
+    } else if (mParams.occlusion) {
         gl::PassTimer::Scope scope(frame.timer, "occlusion");
         mOcclusionPass.program().set("uCacheCount", cacheCount);
         mOcclusionPass.dispatch(perCacheInvocations(cacheCount), NextRead::StorageBuffer);
@@ -294,6 +304,56 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
         glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
     if (frame.display == std::string(name()) + ".caches") drawCacheView(frame);
+}
+
+void LightSkinTechnique::traceOcclusion(int size, int layers)
+{
+    // The RSM's level 0 and its layers' lights, read back (a reference: its cost is not the point).
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    const std::size_t layerTexels = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+    const std::size_t texels = layerTexels * static_cast<std::size_t>(layers);
+    auto read = [&](int attachment) {
+        std::vector<glm::vec4> data(texels);
+        glGetTextureSubImage(mRSM->target().color(attachment).id(), 0, 0, 0, 0, size, size, layers, GL_RGBA, GL_FLOAT,
+                             static_cast<GLsizei>(texels * sizeof(glm::vec4)), data.data());
+        return data;
+    };
+    const std::vector<glm::vec4> position = read(shared::kRSMPosition), normal = read(shared::kRSMNormal),
+                                 flux = read(shared::kRSMFlux), diffuse = read(shared::kRSMDiffuse);
+    std::vector<shared::RSMLayerLight> lights(static_cast<std::size_t>(layers));
+    glGetNamedBufferSubData(mRSM->layerLights().id(), 0,
+                            static_cast<GLsizeiptr>(lights.size() * sizeof(shared::RSMLayerLight)), lights.data());
+    const std::vector<RSMView>& views = mRSM->views();
+    // The VALs as lightskin_proxy.comp takes them (flux x albedo, the shading-normal correction,
+    // eq. (1)'s area), for lightskin-full's every texel; the selection does not enter visibility.
+    std::vector<TracedVAL> vals;
+    for (std::size_t i = 0; i < texels; ++i) {
+        if (normal[i].w == 0.0f) continue;
+        glm::vec3 reflected = glm::vec3(flux[i]) * glm::vec3(diffuse[i]);
+        if (reflected == glm::vec3(0.0f)) continue;
+        const std::size_t layer = i / layerTexels;
+        const glm::vec3 x(position[i]);
+        const glm::vec3 ns = glm::normalize(glm::vec3(normal[i]));
+        const glm::vec3 ng = shared::octDecode(glm::vec2(flux[i].w, diffuse[i].w));
+        const glm::vec3 toLight = shared::rsmDirectionToLight(lights[layer], x);
+        const float cosGeometricIn = glm::dot(ng, toLight);
+        if (!(cosGeometricIn > 1e-3f)) continue;
+        reflected *= std::max(glm::dot(ns, toLight), 0.0f) / cosGeometricIn;
+        const RSMView& view = views[layer];
+        const float depth = -(view.viewFromWorld * glm::vec4(x, 1.0f)).z;
+        TracedVAL val;
+        val.position = x;
+        val.normal = ng;
+        val.area = shared::lightskinValArea(depth, view.texelFactor, view.kind == shared::kRSMLightDirectional);
+        val.power = shared::luminanceRec709(reflected);
+        vals.push_back(val);
+    }
+    const std::vector<float> visibility = traceCacheVisibility(mRays->get(), mCaches.caches, vals, 256, mParams.seed);
+    std::vector<shared::ProxyLight> proxies(mCaches.caches.size());
+    const auto bytes = static_cast<GLsizeiptr>(proxies.size() * sizeof(shared::ProxyLight));
+    glGetNamedBufferSubData(mProxies.id(), 0, bytes, proxies.data());
+    for (std::size_t i = 0; i < proxies.size(); ++i) proxies[i].diffuseFlux.w = proxies[i].glossyFlux.w = visibility[i];
+    mProxies.upload(0, bytes, proxies.data());
 }
 
 void LightSkinTechnique::drawCacheView(const FrameContext& frame)

@@ -76,6 +76,7 @@ struct LightSkinParams {
     bool fluxWeights = false;      // MATH.md 9.3: weight eq. (5)/(13) by the VAL's flux too (not in the paper)
     float interpolationExponent = 1.0f; // p of eq. (8) (the paper gives none; MATH.md 9.5)
     bool occlusion = true;         // double projection (section 3)
+    bool tracedOcclusion = false;  // visibility per cache by Embree rays (the reference; not in the paper)
     bool occlusionCells = true;    // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
     bool exactArea = false;        // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
     std::uint32_t seed = 1;
@@ -114,11 +115,13 @@ private:
     void createPasses(const gl::ShaderLoader& shaders);
     void uploadCaches();
     void drawCacheView(const FrameContext& frame);
+    void traceOcclusion(int size, int layers);
 
     bool mFull;
     LightSkinParams mParams;
     const Scene* mScene = nullptr;
     const GpuScene* mGpuScene = nullptr;
+    const SharedRayScene* mRays = nullptr;
     ProgressSink mProgress;
     bool mCachesStale = true;
     LightCacheSet mCaches;

@@ -37,13 +37,16 @@ void main()
     vec3 centres[kOcclusionCells];
     vec2 shares[kOcclusionCells];
     vec3 squares[kOcclusionCells]; // xy centre on the unit disk, z area
-    float near2[kOcclusionCells];  // occluders count nearer than this [m^2]
+    vec2 depths[kOcclusionCells];  // the light's distance: mean and spread [m] (spread 0: a step)
+    float far2[kOcclusionCells];   // occluders count nearer than this [m^2]
     for (int g = 0; g < kOcclusionCells; ++g) {
         OcclusionTarget target = targets[cache * kOcclusionCells + g];
         centres[g] = target.centre.xyz;
-        shares[g] = target.shares.xy;
+        shares[g] = target.depthShares.zw;
         squares[g] = target.square.xyz;
-        near2[g] = shares[g] != vec2(0.0) ? target.square.w * target.square.w : 0.0; // empty: no occluder
+        depths[g] = target.depthShares.xy;
+        float far = depths[g].x + 3.0 * depths[g].y;
+        far2[g] = shares[g] != vec2(0.0) ? far * far : 0.0; // empty: no occluder
     }
 
     float overlap[kOcclusionCells];
@@ -67,14 +70,15 @@ void main()
         bool candidates[kOcclusionCells];
         for (int g = 0; g < kOcclusionCells; ++g) {
             float lightSide = dot(on, centres[g] - op);
-            candidates[g] = isOccluderCandidate(cache, cp, cn, j, op, near2[g]) && cacheSide * lightSide < 0.0 &&
+            candidates[g] = isOccluderCandidate(cache, cp, cn, j, op, far2[g]) && cacheSide * lightSide < 0.0 &&
                             min(abs(cacheSide), abs(lightSide)) > margin;
             anyCandidate = anyCandidate || candidates[g];
         }
         if (!anyCandidate) continue;
         vec3 square = projectDiskToUnitDisk(op - cp, on, o.positionArea.w, diskFrame);
+        float distance = length(op - cp);
         for (int g = 0; g < kOcclusionCells; ++g)
-            if (candidates[g]) overlap[g] += squareOverlap(squares[g], square);
+            if (candidates[g]) overlap[g] += occlusionBehind(distance, depths[g]) * squareOverlap(squares[g], square);
     }
     for (int g = 0; g < kOcclusionCells; ++g) sOverlap[g][lane] = overlap[g];
     barrier();

@@ -78,15 +78,14 @@ void main()
         OcclusionTarget target;
         target.square = vec4(0.0);
         target.centre = vec4(cp + cn, 0.0);
-        target.shares = vec4(0.0);
+        target.depthShares = vec4(0.0);
         if (uOcclusionCells != 0) {
             int o = kProxyCellFirst + g * kProxyCellSums;
             float w = s[o];
             if (w > 0.0) {
-                target.square = vec4(occlusionCellSquare(w, vec2(s[o + 1], s[o + 2]), vec2(s[o + 3], s[o + 4])),
-                                     occlusionCellNearSide(w, s[o + 8], s[o + 9]));
+                target.square = vec4(occlusionCellSquare(w, vec2(s[o + 1], s[o + 2]), vec2(s[o + 3], s[o + 4])), 0.0);
                 target.centre = vec4(cp + vec3(s[o + 5], s[o + 6], s[o + 7]) / w, 0.0);
-                target.shares = vec4(s[o + 10], s[o + 11], 0.0, 0.0);
+                target.depthShares = vec4(occlusionCellDepth(w, s[o + 8], s[o + 9]), s[o + 10], s[o + 11]);
             }
         } else if (g < 2) {
             // The paper: the proxy's bounding sphere; occluders between the cache and its near side,
@@ -94,10 +93,9 @@ void main()
             // not its blockers (not in the paper; docs/lightskin.md has the measurement behind it).
             vec4 sphere = g == 0 ? proxy.diffusePositionRadius : proxy.glossyPositionRadius;
             vec3 toSphere = sphere.xyz - cp;
-            target.square = vec4(projectSphereToUnitDisk(toSphere, sphere.w, diskFrame),
-                                 max(length(toSphere) - sphere.w, 0.0));
+            target.square = vec4(projectSphereToUnitDisk(toSphere, sphere.w, diskFrame), 0.0);
             target.centre = vec4(sphere.xyz, 0.0);
-            target.shares = g == 0 ? vec4(1.0, 0.0, 0.0, 0.0) : vec4(0.0, 1.0, 0.0, 0.0);
+            target.depthShares = vec4(max(length(toSphere) - sphere.w, 0.0), 0.0, g == 0 ? 1.0 : 0.0, g == 0 ? 0.0 : 1.0);
         }
         targets[cache * kOcclusionCells + g] = target;
     }

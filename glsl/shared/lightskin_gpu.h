@@ -29,9 +29,10 @@ struct ProxyLight {
 // unit disk; without, the paper's spheres (the diffuse proxy's with shares (1, 0), the glossy one's
 // with (0, 1), the rest empty), projected by projectSphereToUnitDisk.
 struct OcclusionTarget {
-    vec4 square;  // xy centre on the cache's unit disk, z area there, w the distance within which occluders count [m]
-    vec4 centre;  // xyz a point of the light (for the occluder-plane test) [m], w 0
-    vec4 shares;  // x the share of the diffuse radiance, y of the glossy (unnormalised), zw 0
+    vec4 square;      // xy centre on the cache's unit disk, z area there, w 0
+    vec4 centre;      // xyz a point of the light (for the occluder-plane test) [m], w 0
+    vec4 depthShares; // x the light's mean distance [m], y its spread [m] (0: a step at x, the sphere's near
+                      // side), z its share of the diffuse radiance, w of the glossy (unnormalised)
 };
 
 // A camera G-buffer sample at a Halton point (eq. 10's view samples).

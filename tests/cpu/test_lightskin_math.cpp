@@ -15,6 +15,7 @@
 
 #include "core/util/importance_table.h"
 #include "glsl/shared/lightskin.h"
+#include "glsl/shared/lightskin_gpu.h"
 #include "glsl/shared/tonemap.h"
 #include "measured.h"
 #include "sphere_quadrature.h"
@@ -772,6 +773,66 @@ TEST_CASE("LightSkin projections on the unit disk: areas pi F, centres at the di
     CHECK(squareOverlap(glm::vec3(0.0f, 0.0f, 0.04f), glm::vec3(0.1f, 0.0f, 0.04f)) == Approx(0.02f));
     CHECK(squareOverlap(glm::vec3(0.0f, 0.0f, 0.04f), glm::vec3(0.3f, 0.0f, 0.04f)) == 0.0f);
     CHECK(squareOverlap(glm::vec3(0.0f, 0.0f, 0.01f), glm::vec3(0.02f, -0.01f, 1.0f)) == Approx(0.01f));
+}
+
+TEST_CASE("LightSkin occlusion cells: five fifths of the unit disk, a cell's square and depth from its moments",
+          "[lightskin]")
+{
+    // A 1000 x 1000 midpoint grid over [-1, 1]^2: the share of the disk's points in each cell is its
+    // share of the disk's area, i.e. of the cosine-weighted hemisphere (Nusselt).
+    const glm::mat3 frame = occlusionFrame(glm::normalize(glm::vec3(0.2f, 1.0f, -0.4f)));
+    int counts[kOcclusionCells] = {};
+    int inside = 0;
+    const int n = 1000;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const float u = -1.0f + (2.0f * static_cast<float>(i) + 1.0f) / n;
+            const float v = -1.0f + (2.0f * static_cast<float>(j) + 1.0f) / n;
+            if (u * u + v * v >= 1.0f) continue;
+            const glm::vec3 w = u * frame[0] + v * frame[1] + std::sqrt(1.0f - u * u - v * v) * frame[2];
+            ++counts[occlusionCell(w, frame)];
+            ++inside;
+        }
+    // The grid's boundary error is about the perimeter times a cell, 2 pi / 1000 of pi: 2e-3.
+    for (int count : counts) CHECK(static_cast<double>(count) / inside == Approx(0.2).margin(2e-3));
+    // Directions in each quadrant's middle, and the centre.
+    CHECK(occlusionCell(frame[2], frame) == 0);
+    CHECK(occlusionCell(glm::normalize(frame[0] + frame[2]), frame) == 1);
+    CHECK(occlusionCell(glm::normalize(frame[1] + frame[2]), frame) == 2);
+    CHECK(occlusionCell(glm::normalize(-frame[0] + frame[2]), frame) == 3);
+    CHECK(occlusionCell(glm::normalize(-frame[1] + frame[2]), frame) == 4);
+
+    // Square: VALs uniform on a disk of radius 0.3 about (0.1, -0.2) on the unit disk (midpoint
+    // rings): the mean, and the area of that disk, pi 0.09 (2 sigma = R per axis).
+    float weight = 0.0f;
+    glm::vec2 sum(0.0f), squares(0.0f);
+    for (int i = 0; i < 64; ++i)
+        for (int j = 0; j < 64; ++j) {
+            const float r = 0.3f * std::sqrt((i + 0.5f) / 64.0f);
+            const float phi = 2.0f * static_cast<float>(kPiD) * (j + 0.5f) / 64.0f;
+            const glm::vec2 p = glm::vec2(0.1f, -0.2f) + r * glm::vec2(std::cos(phi), std::sin(phi));
+            weight += 1.0f;
+            sum += p;
+            squares += p * p;
+        }
+    const glm::vec3 square = occlusionCellSquare(weight, sum, squares);
+    CHECK(square.x == Approx(0.1f).margin(1e-5));
+    CHECK(square.y == Approx(-0.2f).margin(1e-5));
+    CHECK(square.z == Approx(kPiD * 0.09).epsilon(1e-3));
+    CHECK(occlusionCellSquare(0.0f, sum, squares) == glm::vec3(0.0f));
+    // Spread over the whole disk and beyond: at most pi.
+    CHECK(occlusionCellSquare(1.0f, glm::vec2(0.0f), glm::vec2(4.0f)).z == Approx(kPiD));
+    // Depth: distances 4 and 6 are mean 5, sigma 1; one VAL at 5: sigma held at 0.005; none: 0.
+    CHECK(occlusionCellDepth(2.0f, 10.0f, 16.0f + 36.0f).x == Approx(5.0f));
+    CHECK(occlusionCellDepth(2.0f, 10.0f, 16.0f + 36.0f).y == Approx(1.0f));
+    CHECK(occlusionCellDepth(1.0f, 5.0f, 25.0f).y == Approx(0.005f));
+    CHECK(occlusionCellDepth(0.0f, 0.0f, 0.0f) == glm::vec2(0.0f));
+    // Behind: half at the mean, the normal CDF within 0.01 a sigma away (0.159), a step without spread.
+    CHECK(occlusionBehind(5.0f, glm::vec2(5.0f, 1.0f)) == Approx(0.5f));
+    CHECK(occlusionBehind(6.0f, glm::vec2(5.0f, 1.0f)) == Approx(0.1587f).margin(0.01));
+    CHECK(occlusionBehind(4.0f, glm::vec2(5.0f, 1.0f)) == Approx(0.8413f).margin(0.01));
+    CHECK(occlusionBehind(4.9f, glm::vec2(5.0f, 0.0f)) == 1.0f);
+    CHECK(occlusionBehind(5.1f, glm::vec2(5.0f, 0.0f)) == 0.0f);
 }
 
 TEST_CASE("LightSkin occlusion: a wall between a VAL cluster and the cache blocks it, half a wall half of it",

@@ -131,20 +131,29 @@ TEST_CASE("lightskin: occlusion acts on a wall that a board shades from a broad 
         return meanLuminance(test::renderIndirect(*renderer, camera, width, height));
     };
     const double cells = mean({});
+    const double traced = mean({{"lightskin.tracedOcclusion", "true"}});
     const double paper = mean({{"lightskin.occlusionCells", "false"}});
     const double off = mean({{"lightskin.occlusion", "false"}});
     const double reference = meanLuminance(test::oneBounceReference(scene, camera, width, height, 1024));
     MEASURED("board scene, the wall behind the board (32x18, RSM 128^2, automatic d_eps): lightskin-full against the "
              "one-bounce path tracer with occlusion cells "
-             << 100.0 * (cells / reference - 1.0) << "%, the paper's sphere per proxy " << 100.0 * (paper / reference - 1.0)
-             << "%, without occlusion " << 100.0 * (off / reference - 1.0) << "%");
+             << 100.0 * (cells / reference - 1.0) << "%, with traced visibility " << 100.0 * (traced / reference - 1.0)
+             << "%, the paper's sphere per proxy " << 100.0 * (paper / reference - 1.0) << "%, without occlusion "
+             << 100.0 * (off / reference - 1.0) << "%; cells / traced " << cells / traced);
     REQUIRE(reference > 0.0);
     // The paper's sphere contains the cache (its VALs span the floor): no occluder counts, so it
     // is the unoccluded light, about twice the path tracer's (measured +98%).
     CHECK(paper == Approx(off).epsilon(1e-3));
     CHECK(paper > 1.6 * reference);
-    // The cells remove most of the blocked light: measured +XX%.
-    CHECK(std::abs(cells / reference - 1.0) < 0.3);
+    // With each cache's visibility traced, the caches and their interpolation are close to the path
+    // tracer (measured -3.6%; bound about 3x).
+    CHECK(std::abs(traced / reference - 1.0) < 0.1);
+    // The cells' double projection against the traced visibility: measured 0.846 (it blocks a
+    // little too much); the bound is about 2x that error. The last check is the issue's acceptance
+    // line (within 20% of the path tracer; measured -18.5%), not a tolerance: the path tracer's
+    // noise at 1024 spp moves the mean by well under 1%, the rest is deterministic.
+    CHECK(std::abs(cells / traced - 1.0) < 0.3);
+    CHECK(std::abs(cells / reference - 1.0) < 0.2);
 }
 
 TEST_CASE("lightskin and lightskin-full images are bit-identical over runs", "[lightskin][lightskin-determinism]")

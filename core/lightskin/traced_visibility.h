@@ -1,0 +1,36 @@
+// LightSkin's occlusion reference (issue "LightSkin's indirect shadows"): the fraction of a light
+// cache's one-bounce light that reaches it unblocked, traced with Embree. Not real-time and not in
+// the paper: `lightskin.tracedOcclusion` puts it where the double projection's estimate goes, so
+// that the image's error splits into what the caches and their interpolation cost (traced) and what
+// the double projection adds (docs/lightskin.md, "Occlusion").
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/lightskin/light_caches.h"
+#include "core/trace/ray_scene.h"
+
+namespace vplgi {
+
+// A virtual area light as the proxy pass sees it (glsl/passes/lightskin_proxy.comp): position,
+// geometric normal, eq. (1)'s area and the luminance of its reflected flux (after the shading-normal
+// correction).
+struct TracedVAL {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};
+    float area = 0.0f;  // [m^2]
+    float power = 0.0f; // luminance of the flux [W]
+};
+
+// Per cache: sum_l c_l V(c, l) / sum_l c_l with c_l the VAL's eq. (3) term at the cache (flux times
+// glsl/shared/lightskin.h valGeometryTerm) and V the visibility of the segment between them (both
+// ends lifted off their surfaces by 1e-4 of the scene's diagonal), estimated from `samples` VALs
+// drawn in proportion to c_l (a Monte Carlo standard error of at most 0.5/sqrt(samples)). 1 for a
+// cache no VAL lights. Deterministic: the draws are keyed by (seed, cache), not by threads.
+std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<LightCache>& caches,
+                                        const std::vector<TracedVAL>& vals, int samples, std::uint32_t seed);
+
+} // namespace vplgi
