@@ -28,8 +28,6 @@ void main()
 {
     int cache = int(gl_GlobalInvocationID.x);
     if (cache >= uCacheCount) return;
-    vec4 sums[kProxySumVec4s];
-    for (int v = 0; v < kProxySumVec4s; ++v) sums[v] = vec4(0.0);
     // The sums in the order lightskin_proxy.comp wrote them (lightskin_gpu.h).
     float s[kProxySumCount];
     for (int i = 0; i < kProxySumCount; ++i) s[i] = 0.0;
@@ -40,6 +38,13 @@ void main()
             for (int i = 0; i < 4; ++i) s[4 * v + i] += four[i];
         }
     }
+    // Numeric guard: the proxy pass drops non-finite VALs, but finite ones can still overflow a sum
+    // (an RSM of absurd flux); inf / inf would make the cache's proxies NaN and every pixel that
+    // interpolates them. Such a cache passes on no light.
+    bool finite = true;
+    for (int i = 0; i < kProxySumCount; ++i) finite = finite && !isnan(s[i]) && !isinf(s[i]);
+    if (!finite)
+        for (int i = 0; i < kProxySumCount; ++i) s[i] = 0.0;
     GpuLightCache c = caches[cache];
     vec3 cp = c.positionArea.xyz;
     vec3 cn = c.normalRoughness.xyz;
@@ -62,6 +67,7 @@ void main()
         // towards the proxy for the glossy one.
         float brdf = p == 0 ? 1.0 : phongLobe(dot(view, mirrorDirection(toProxy, cn)), k);
         vec3 flux = proxyFluxFromRadiance(radiance, distance2, vec3(brdf), cosCache);
+        if (any(isinf(flux)) || any(isnan(flux))) flux = vec3(0.0); // eq. (7) overflowed: no light
         vec4 positionRadius = vec4(cp + mean, proxySphereRadius(w, offsetSum, squaredOffsetSum));
         if (p == 0) {
             proxy.diffusePositionRadius = positionRadius;

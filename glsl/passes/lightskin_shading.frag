@@ -85,6 +85,11 @@ void main()
     for (int i = 0; i < near.count; ++i) {
         int index = near.index[i];
         ProxyLight p = proxies[index];
+        // Numeric guard: a non-finite proxy (whatever wrote it) is skipped, not spread over the pixels.
+        if (any(isnan(p.diffusePositionRadius)) || any(isinf(p.diffusePositionRadius)) || any(isnan(p.diffuseFlux)) ||
+            any(isinf(p.diffuseFlux)) || any(isnan(p.glossyPositionRadius)) || any(isinf(p.glossyPositionRadius)) ||
+            any(isnan(p.glossyFlux)) || any(isinf(p.glossyFlux)))
+            continue;
         vec3 cp = caches[index].positionArea.xyz;
         vec3 cn = caches[index].normalRoughness.xyz;
         // A single cache, or several at the same distance, would all get weight 0: weigh them equally

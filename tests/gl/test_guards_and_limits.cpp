@@ -18,6 +18,7 @@
 #include "gl/passes/rsm_pass.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
+#include "glsl/shared/lightskin_gpu.h"
 #include "glsl/shared/rsm.h"
 #include "glsl/shared/sg.h"
 #include "buffer_readback.h"
@@ -86,6 +87,63 @@ TEST_CASE("VPL/VSGL generation: a light whose flux overflows is dropped, not inf
         CHECK(lights[2].normalValid.w == 1.0f); // kept, with Phi / (N P)
         CHECK(lights[2].flux.r == Approx(0.5f / (3.0f * 0.25f)).epsilon(1e-5));
     }
+}
+
+TEST_CASE("lightskin: a proxy whose sums are not finite passes on no light, the others are untouched", "[guards][lightskin]")
+{
+    test::ensureGLContext();
+    // Two caches facing up, one chunk of sums each. Cache 0's VAL sums hold an infinity and a NaN
+    // (finite VALs whose sum overflowed); cache 1's are one VAL 2 m above it.
+    std::vector<shared::GpuLightCache> caches(2);
+    for (int i = 0; i < 2; ++i) {
+        caches[static_cast<std::size_t>(i)].positionArea = glm::vec4(static_cast<float>(i), 0.0f, 0.0f, 1.0f);
+        caches[static_cast<std::size_t>(i)].normalRoughness = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+    }
+    std::vector<float> sums(2 * shared::kProxySumVec4s * 4, 0.0f);
+    auto setProxySums = [&](int cache, float w, glm::vec3 offset, float radiance) {
+        float* s = sums.data() + cache * shared::kProxySumVec4s * 4;
+        for (int p = 0; p < 2; ++p) {
+            float* q = s + p * shared::kProxySums;
+            q[0] = w;
+            for (int a = 0; a < 3; ++a) {
+                q[1 + a] = w * offset[a];
+                q[4 + a] = w * offset[a] * offset[a];
+                q[7 + a] = radiance;
+            }
+        }
+    };
+    setProxySums(0, std::numeric_limits<float>::infinity(), glm::vec3(0.0f, 2.0f, 0.0f), 1.0f);
+    sums[7] = std::numeric_limits<float>::quiet_NaN();
+    setProxySums(1, 1.0f, glm::vec3(0.0f, 2.0f, 0.0f), 1.0f);
+    gl::Buffer cacheBuffer("guard test caches", static_cast<GLsizeiptr>(caches.size() * sizeof(shared::GpuLightCache)),
+                           caches.data());
+    gl::Buffer sumBuffer("guard test sums", static_cast<GLsizeiptr>(sums.size() * sizeof(float)), sums.data());
+    gl::Buffer proxyBuffer("guard test proxies", 2 * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
+    gl::Buffer targetBuffer("guard test targets",
+                            2 * shared::kOcclusionCells * static_cast<GLsizeiptr>(sizeof(shared::OcclusionTarget)));
+    shared::FrameUniforms frame{};
+    frame.cameraPosition = glm::vec4(0.0f, 5.0f, 5.0f, 1.0f);
+    gl::Buffer frameBuffer("guard test frame", static_cast<GLsizeiptr>(sizeof(frame)), &frame);
+    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, frameBuffer.id());
+    bindStorageBuffer(shared::kBindingLightCaches, cacheBuffer);
+    bindStorageBuffer(shared::kBindingProxySums, sumBuffer);
+    bindStorageBuffer(shared::kBindingProxyLights, proxyBuffer);
+    bindStorageBuffer(shared::kBindingOcclusionTargets, targetBuffer);
+    ComputePass finalize(test::shaders(), "LightSkin proxies", "passes/lightskin_proxy_finalize.comp");
+    finalize.program().set("uCacheCount", 2);
+    finalize.program().set("uChunks", 1);
+    finalize.program().set("uOcclusionCells", 0);
+    finalize.dispatch(2, 1, NextRead::BufferReadback);
+    const std::vector<shared::ProxyLight> proxies = test::readBuffer<shared::ProxyLight>(proxyBuffer, 2);
+    // Without the guard cache 0's position is inf / inf = NaN and its flux NaN.
+    for (const glm::vec4& v : {proxies[0].diffusePositionRadius, proxies[0].diffuseFlux, proxies[0].glossyPositionRadius,
+                               proxies[0].glossyFlux})
+        CHECK((std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w)));
+    CHECK(glm::vec3(proxies[0].diffuseFlux) == glm::vec3(0.0f));
+    // Cache 1: the VAL's proxy 2 m above it, with flux 4 pi L d^2 / (f_r cos) = 16 pi (f_r = 1).
+    CHECK(proxies[1].diffusePositionRadius.y == Approx(2.0f));
+    CHECK(proxies[1].diffuseFlux.x == Approx(16.0 * 3.14159265358979323846).epsilon(1e-5));
+    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, 0);
 }
 
 TEST_CASE("vsgl / vpl-brsm: count 65536 is clamped to llvmpipe's loop budget with a warning", "[limits][vsgl]")
