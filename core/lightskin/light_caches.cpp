@@ -42,7 +42,7 @@ constexpr double kSplitEpsilon = 1e-4;    // [fine voxel edges]: see splitAlong
 constexpr std::uint32_t kFileVersion = 1; // bump when the distribution or the file layout changes
 constexpr char kFileMagic[8] = {'V', 'P', 'L', 'G', 'L', 'S', 'C', 'A'};
 constexpr int kAutomaticCacheTarget = 2048; // caches on a flat scene under the automatic d_eps
-constexpr double kMaxPieces = 1e7;          // step 1 pieces per scene: about 2 GB
+constexpr double kMaxPieces = 1e7;          // step 1 pieces per instance (one at a time): about 2 GB
 
 // The geometry of one cache before the material is attached (what the disk cache stores).
 struct CacheGeometry {
@@ -679,21 +679,25 @@ void writeInstanceFile(const std::filesystem::path& path, const std::vector<Cach
 }
 
 // World-space area of every instance's triangles [m^2].
+double instanceSurfaceArea(const Scene& scene, const Instance& instance)
+{
+    double area = 0.0;
+    const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
+    const glm::dmat4 m(instance.worldFromObject);
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        glm::dvec3 p[3];
+        for (int k = 0; k < 3; ++k)
+            p[k] = glm::dvec3(
+                m * glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
+        area += triangleAreaWorld(p[0], p[1], p[2]);
+    }
+    return area;
+}
+
 double sceneSurfaceArea(const Scene& scene)
 {
     double area = 0.0;
-    for (const Instance& instance : scene.instances) {
-        const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
-        const glm::dmat4 m(instance.worldFromObject);
-        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            glm::dvec3 p[3];
-            for (int k = 0; k < 3; ++k)
-                p[k] = glm::dvec3(
-                    m *
-                    glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
-            area += triangleAreaWorld(p[0], p[1], p[2]);
-        }
-    }
+    for (const Instance& instance : scene.instances) area += instanceSurfaceArea(scene, instance);
     return area;
 }
 
@@ -768,10 +772,14 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
     set.distance = resolveLightCacheDistance(scene, params);
     // Pieces (step 1) cost about 200 bytes each, A / (d_eps / 4)^2 of them: refuse a d_eps that would
     // need gigabytes rather than run out of memory.
+    // Instances are cut one at a time, so the bound is per instance (a large world of many
+    // instances is fine; issue "LightSkin's indirect shadows", part 4).
     const double fine = 0.25 * static_cast<double>(set.distance);
-    const double pieces = sceneSurfaceArea(scene) / (fine * fine);
+    double largestArea = 0.0;
+    for (const Instance& instance : scene.instances) largestArea = std::max(largestArea, instanceSurfaceArea(scene, instance));
+    const double pieces = largestArea / (fine * fine);
     require(pieces <= kMaxPieces, "light caches: lightskin.cacheDistance = " + std::to_string(set.distance) +
-                                      " m would cut the scene into about " + std::to_string(pieces) +
+                                      " m would cut an instance into about " + std::to_string(pieces) +
                                       " pieces (at most " + std::to_string(kMaxPieces) + "); use a larger distance");
     const UntexturedMaterials materials = computeUntexturedMaterials(scene);
     const int total = static_cast<int>(scene.instances.size());

@@ -269,9 +269,22 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         proxy.set("uEpsilon", mParams.weightEpsilon);
         proxy.set("uFluxWeights", mParams.fluxWeights ? 1 : 0);
         proxy.set("uExactArea", mParams.exactArea ? 1 : 0);
-        glm::ivec3 invocations = perCacheInvocations(cacheCount);
-        invocations.x *= chunks;
-        mProxyPass.dispatch(invocations, NextRead::StorageBuffer);
+        proxy.set("uChunks", chunks);
+        // lightskin-full's pass can take minutes (every texel for every cache): chunk by chunk with
+        // progress when it is that large (caches x VALs above 1e9), in one dispatch otherwise.
+        const bool showProgress = mFull && static_cast<double>(cacheCount) * valCount > 1e9 && mProgress;
+        const int perDispatch = showProgress ? 1 : chunks;
+        if (showProgress) mProgress("lightskin-full proxy lights", 0, chunks);
+        for (int first = 0; first < chunks; first += perDispatch) {
+            proxy.set("uChunkFirst", first);
+            glm::ivec3 invocations = perCacheInvocations(cacheCount);
+            invocations.x *= std::min(perDispatch, chunks - first);
+            mProxyPass.dispatch(invocations, NextRead::StorageBuffer);
+            if (showProgress) {
+                glFinish();
+                mProgress("lightskin-full proxy lights", first + perDispatch, chunks);
+            }
+        }
         bindStorageBuffer(shared::kBindingOcclusionTargets, mOcclusionTargets);
         mFinalizePass.program().set("uCacheCount", cacheCount);
         mFinalizePass.program().set("uChunks", chunks);

@@ -41,6 +41,8 @@ uniform int uSelectionCount; // N_sVAL
 uniform int uSize;           // RSM edge [texels]
 uniform int uCacheCount;
 uniform int uChunkSize;      // VALs per chunk (a multiple of the group size)
+uniform int uChunkFirst;     // the chunk of work-group x = 0 (lightskin-full dispatches chunk by chunk)
+uniform int uChunks;         // chunks in all
 uniform float uEpsilon;      // epsilon_p of eq. (6)
 uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too (MATH.md 9.3 option)
 uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
@@ -63,7 +65,7 @@ void main()
     mat3 diskFrame = occlusionFrame(cn);
     float sums[kProxySumCount];
     for (int s = 0; s < kProxySumCount; ++s) sums[s] = 0.0;
-    int chunk = int(gl_WorkGroupID.x);
+    int chunk = uChunkFirst + int(gl_WorkGroupID.x);
     int chunkEnd = min((chunk + 1) * uChunkSize, uValCount);
     for (int j = chunk * uChunkSize + int(lane); j < chunkEnd; j += kLightSkinGroupSize) {
         ivec3 texel;
@@ -153,7 +155,7 @@ void main()
         barrier();
     }
     if (lane != 0u) return;
-    int chunks = int(gl_NumWorkGroups.x);
+    int chunks = uChunks;
     int at = (cache * chunks + chunk) * kProxySumVec4s;
     for (int v = 0; v < kProxySumVec4s; ++v) {
         partialSums[at + v] = vec4(sSums[4 * v][0], sSums[4 * v + 1][0], sSums[4 * v + 2][0], sSums[4 * v + 3][0]);

@@ -136,7 +136,7 @@ error "unknown technique \"nope\"" render --scene cornell --technique nope --out
 error "unknown parameter \"renderer.exposur\"" render --scene cornell --set renderer.exposur=2 --out a.png
 error "renderer.exposure = -1 is outside" render --scene cornell --set renderer.exposure=-1 --out a.png
 error "parameter smcir.vplCount = 2000000 is outside [1, 1048576]" render --scene cornell --technique smcir --set smcir.vplCount=2000000 "${S[@]}" --out a.png
-error "lightskin.cacheDistance = 0.000100 m would cut the scene into about" render --scene cornell --technique lightskin --set lightskin.cacheDistance=0.0001 "${S[@]}" --out a.png
+error "lightskin.cacheDistance = 0.000100 m would cut an instance into about" render --scene cornell --technique lightskin --set lightskin.cacheDistance=0.0001 "${S[@]}" --out a.png
 error "no camera \"nocam\"" render --scene cornell --camera nocam --out a.png
 error "must end in .png or .exr" render --scene cornell --out a.jpg
 error "--scene is required" render
