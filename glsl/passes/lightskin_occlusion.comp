@@ -5,9 +5,11 @@
 // around the cache's normal (a projected solid angle, i.e. pi times the form factor), turned into
 // squares of equal area, and the overlap of the cache squares with the proxy's square is the
 // occluded fraction (clamped to 1). The result multiplies the proxy's flux (its w).
-// With lightskin.occlusionCells (the default; not in the paper) the spheres are those of the VALs
-// in each of five cells of the cache's unit disk, and a proxy's visibility is the radiance-weighted
-// mean over the cells (glsl/shared/lightskin.h, occlusionCell, says why).
+// With lightskin.occlusionCells (the default; not in the paper) the light is instead the footprint
+// of the VALs in each of five cells of the cache's unit disk, an occluder blocks the share of a
+// cell's light behind it, and a proxy's visibility is the radiance-weighted mean over the cells
+// (glsl/shared/lightskin.h, occlusionCell, says why). lightskin_proxy_finalize.comp writes the
+// targets (OcclusionTarget) for either.
 // One work-group per cache, every 64th other cache per invocation, a fixed-order reduction.
 #include "../shared/bindings.h"
 #include "../shared/lightskin.h"

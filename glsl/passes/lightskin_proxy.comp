@@ -8,6 +8,8 @@
 //   flux      Phi_p = 4 pi L_o(c) |x_p - c|^2 / (f_r(c, w, w_i) cos+)  eq. (7), L_o from eq. (14)/(15)
 // The cache's albedo cancels between eq. (14)/(15) and eq. (7) (MATH.md 9.4), and so does the
 // glossy colour and the Phong normalisation (k + 2)/(2 pi): the sums below leave them out.
+// For occlusion it also sums the same VALs per cell of the cache's unit disk (lightskin.h,
+// occlusionCell; not in the paper), from which the finalize pass makes the occlusion targets.
 // This pass makes the sums: one work-group per (cache, chunk of VALs), each invocation takes every
 // 64th VAL of the chunk, and the group reduces its sums in shared memory in a fixed tree order
 // into ProxySums[cache * chunks + chunk]. lightskin_proxy_finalize.comp adds the chunks of a cache
@@ -150,14 +152,12 @@ void main()
     barrier();
     for (uint stride = uint(kLightSkinGroupSize) / 2u; stride > 0u; stride /= 2u) {
         if (lane < stride)
-            for (int s = 0; s < kProxySumCount; ++s)
-                sSums[s][lane] += sSums[s][lane + stride];
+            for (int s = 0; s < kProxySumCount; ++s) sSums[s][lane] += sSums[s][lane + stride];
         barrier();
     }
     if (lane != 0u) return;
     int chunks = uChunks;
     int at = (cache * chunks + chunk) * kProxySumVec4s;
-    for (int v = 0; v < kProxySumVec4s; ++v) {
+    for (int v = 0; v < kProxySumVec4s; ++v)
         partialSums[at + v] = vec4(sSums[4 * v][0], sSums[4 * v + 1][0], sSums[4 * v + 2][0], sSums[4 * v + 3][0]);
-    }
 }

@@ -67,6 +67,7 @@ VPLGI_SHARED_END
 static_assert(sizeof(vplgi::shared::GpuLightCache) == 64, "GpuLightCache must match std430");
 static_assert(sizeof(vplgi::shared::ProxyLight) == 64, "ProxyLight must match std430");
 static_assert(sizeof(vplgi::shared::OcclusionTarget) == 48, "OcclusionTarget must match std430");
+static_assert(vplgi::shared::kProxySumCount % 4 == 0, "the proxy sums are read as whole vec4s");
 static_assert(sizeof(vplgi::shared::ViewSample) == 32, "ViewSample must match std430");
 static_assert(sizeof(vplgi::shared::RSMLayerView) == 32, "RSMLayerView must match std430");
 #endif
