@@ -14,11 +14,14 @@
 
 #include "gl/api/context.h"
 #include "gl/api/limits.h"
+#include "gl/api/render_target.h"
 #include "gl/passes/compute_pass.h"
+#include "gl/passes/fullscreen_pass.h"
 #include "gl/passes/rsm_pass.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
 #include "glsl/shared/lightskin_gpu.h"
+#include "glsl/shared/normals.h"
 #include "glsl/shared/rsm.h"
 #include "glsl/shared/sg.h"
 #include "buffer_readback.h"
@@ -144,6 +147,87 @@ TEST_CASE("lightskin: a proxy whose sums are not finite passes on no light, the 
     CHECK(proxies[1].diffusePositionRadius.y == Approx(2.0f));
     CHECK(proxies[1].diffuseFlux.x == Approx(16.0 * 3.14159265358979323846).epsilon(1e-5));
     glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, 0);
+}
+
+TEST_CASE("lightskin: a pixel skips a cache whose proxy is not finite and keeps the others", "[guards][lightskin]")
+{
+    test::ensureGLContext();
+    // A 4 x 4 G-buffer of one floor point facing up at the origin; two caches beside it, cache 0
+    // with a NaN diffuse flux (injected), cache 1 with a proxy 2 m above.
+    const int size = 4;
+    auto texture = [&](const char* name, const glm::vec4& value) {
+        gl::TextureDesc desc;
+        desc.format = GL_RGBA32F;
+        desc.width = size;
+        desc.height = size;
+        gl::Texture t(name, desc);
+        const std::vector<glm::vec4> texels(static_cast<std::size_t>(size * size), value);
+        glTextureSubImage2D(t.id(), 0, 0, 0, size, size, GL_RGBA, GL_FLOAT, texels.data());
+        return t;
+    };
+    const glm::vec2 up = shared::octEncode(glm::vec3(0.0f, 1.0f, 0.0f));
+    const gl::Texture position = texture("position", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const gl::Texture normal = texture("normal", glm::vec4(0.0f, 1.0f, 0.0f, 1.0f));
+    const gl::Texture baseColor = texture("base colour", glm::vec4(0.5f, 0.5f, 0.5f, 0.0f));
+    const gl::Texture emission = texture("emission", glm::vec4(0.0f));
+    const gl::Texture surfaceNormals = texture("surface normals", glm::vec4(up, up));
+    const std::pair<int, const gl::Texture*> units[] = {{shared::kUnitGBufferPosition, &position},
+                                                        {shared::kUnitGBufferNormal, &normal},
+                                                        {shared::kUnitGBufferBaseColor, &baseColor},
+                                                        {shared::kUnitGBufferEmission, &emission},
+                                                        {shared::kUnitGBufferSurfaceNormals, &surfaceNormals}};
+    for (const auto& [unit, t] : units) {
+        glBindTextureUnit(static_cast<GLuint>(unit), t->id());
+        glBindSampler(static_cast<GLuint>(unit), 0);
+    }
+    std::vector<shared::GpuLightCache> caches(2);
+    std::vector<shared::ProxyLight> proxies(2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        caches[i].positionArea = glm::vec4(i == 0 ? -0.2f : 0.2f, 0.0f, 0.0f, 1.0f);
+        caches[i].normalRoughness = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+        proxies[i].diffusePositionRadius = glm::vec4(0.0f, 2.0f, 0.0f, 0.0f);
+        proxies[i].diffuseFlux = glm::vec4(10.0f, 10.0f, 10.0f, 1.0f);
+        proxies[i].glossyPositionRadius = glm::vec4(0.0f, 2.0f, 0.0f, 0.0f);
+        proxies[i].glossyFlux = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    }
+    proxies[0].diffuseFlux.x = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<std::uint32_t> cellStart = {0u, 2u}, indices = {0u, 1u}; // one grid cell, both caches
+    gl::Buffer cacheBuffer("guard caches", static_cast<GLsizeiptr>(caches.size() * sizeof(shared::GpuLightCache)),
+                           caches.data());
+    gl::Buffer proxyBuffer("guard proxies", static_cast<GLsizeiptr>(proxies.size() * sizeof(shared::ProxyLight)),
+                           proxies.data());
+    gl::Buffer cellBuffer("guard cells", static_cast<GLsizeiptr>(cellStart.size() * sizeof(std::uint32_t)),
+                          cellStart.data());
+    gl::Buffer indexBuffer("guard indices", static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                           indices.data());
+    shared::FrameUniforms frame{};
+    frame.cameraPosition = glm::vec4(0.0f, 3.0f, 3.0f, 1.0f);
+    gl::Buffer frameBuffer("guard frame", static_cast<GLsizeiptr>(sizeof(frame)), &frame);
+    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, frameBuffer.id());
+    bindStorageBuffer(shared::kBindingLightCaches, cacheBuffer);
+    bindStorageBuffer(shared::kBindingProxyLights, proxyBuffer);
+    bindStorageBuffer(shared::kBindingLightCacheCells, cellBuffer);
+    bindStorageBuffer(shared::kBindingLightCacheIndices, indexBuffer);
+    FullscreenPass shading(test::shaders(), "LightSkin interpolation", "passes/lightskin_shading.frag");
+    const gl::Program& program = shading.program();
+    program.set("uGridOrigin", glm::vec3(-1.0f));
+    program.set("uGridCellSize", 2.0f);
+    glProgramUniform3i(program.id(), program.uniformLocation("uGridDims"), 1, 1, 1);
+    program.set("uExponent", 1.0f);
+    gl::RenderTarget target("guard radiance", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"}));
+    target.resize(size, size);
+    shading.render(target);
+    std::vector<glm::vec4> pixels(static_cast<std::size_t>(size * size));
+    glGetTextureImage(target.color(0).id(), 0, GL_RGBA, GL_FLOAT,
+                      static_cast<GLsizei>(pixels.size() * sizeof(glm::vec4)), pixels.data());
+    // Without the guard every pixel is NaN (cache 0's flux enters the interpolated sum). With it the
+    // pixel takes cache 1 alone: rho/pi Phi/(4 pi) cos / d^2 = 0.5/pi 10/(4 pi) / 4 = 0.0317.
+    for (const glm::vec4& p : pixels) {
+        CHECK(std::isfinite(p.r));
+        CHECK(p.r == Approx(0.5 / 3.14159265358979 * 10.0 / (4.0 * 3.14159265358979) / 4.0).epsilon(1e-4));
+    }
+    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, 0);
+    for (const auto& [unit, t] : units) glBindTextureUnit(static_cast<GLuint>(unit), 0);
 }
 
 TEST_CASE("vsgl / vpl-brsm: count 65536 is clamped to llvmpipe's loop budget with a warning", "[limits][vsgl]")
