@@ -39,7 +39,7 @@ namespace {
 
 constexpr int kBinsPerFaceEdge = 8;       // step 2: 6 x 8 x 8 direction bins
 constexpr double kSplitEpsilon = 1e-4;    // [fine voxel edges]: see splitAlong
-constexpr std::uint32_t kFileVersion = 1; // bump when the distribution or the file layout changes
+constexpr std::uint32_t kFileVersion = 2; // bump when the distribution or the file layout changes (2: the key inside)
 constexpr char kFileMagic[8] = {'V', 'P', 'L', 'G', 'L', 'S', 'C', 'A'};
 constexpr int kAutomaticCacheTarget = 2048; // caches on a flat scene under the automatic d_eps
 constexpr double kMaxPieces = 1e7;          // step 1 pieces per instance (one at a time): about 2 GB
@@ -586,6 +586,9 @@ std::string instanceKey(const Scene& scene, const Instance& instance, float dist
     Hasher h;
     h.text("lightskin caches");
     h.value(kFileVersion);
+    // The algorithm's constants, so that changing one misses instead of loading stale caches.
+    h.value(kBinsPerFaceEdge);
+    h.value(kSplitEpsilon);
     h.value(mesh.vertices.size());
     for (const Vertex& v : mesh.vertices) { // positions place the caches, normals choose their side
         h.value(v.position);
@@ -613,28 +616,42 @@ void warn(const std::string& message)
     std::fprintf(stderr, "warning: %s\n", message.c_str());
 }
 
-// Layout: magic[8], version u32, reserved u32, count u64, caches (7 floats each), FNV-1a of the
-// caches u64. The key is the file name. Returns false (with a warning when the file exists but is
-// not valid) when the caller must compute.
-bool readInstanceFile(const std::filesystem::path& path, std::vector<CacheGeometry>& caches)
+// The key as the file stores it: a digest of the key text (the file name), so that a file copied or
+// renamed to another key is not taken for it.
+std::uint64_t keyDigest(const std::string& key)
+{
+    Hasher h;
+    h.text(key);
+    return h.digest();
+}
+
+// Layout: magic[8], version u32, reserved u32, key digest u64, count u64, caches (7 floats each),
+// FNV-1a of the caches u64. The key is also the file name. Returns false (with a warning when the
+// file exists but is not valid or is another key's) when the caller must compute.
+bool readInstanceFile(const std::filesystem::path& path, const std::string& key, std::vector<CacheGeometry>& caches)
 {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return false;
     std::ifstream in(path, std::ios::binary);
     char magic[8] = {};
     std::uint32_t version = 0, reserved = 0;
-    std::uint64_t count = 0, checksum = 0;
+    std::uint64_t storedKey = 0, count = 0, checksum = 0;
     in.read(magic, sizeof magic);
     in.read(reinterpret_cast<char*>(&version), sizeof version);
     in.read(reinterpret_cast<char*>(&reserved), sizeof reserved);
+    in.read(reinterpret_cast<char*>(&storedKey), sizeof storedKey);
     in.read(reinterpret_cast<char*>(&count), sizeof count);
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    const std::uintmax_t header = sizeof magic + 2 * sizeof(std::uint32_t) + sizeof(std::uint64_t);
+    const std::uintmax_t header = sizeof magic + 2 * sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t);
     const bool headerOk = in && !ec && std::memcmp(magic, kFileMagic, sizeof magic) == 0 && version == kFileVersion &&
                           count <= (size - std::min(size, header)) / sizeof(CacheGeometry) &&
                           size == header + count * sizeof(CacheGeometry) + sizeof checksum;
     if (!headerOk) {
         warn(path.string() + ": not a valid light cache file (wrong header or size); recomputing");
+        return false;
+    }
+    if (storedKey != keyDigest(key)) {
+        warn(path.string() + ": light cache file of another key (copied or renamed); recomputing");
         return false;
     }
     caches.resize(static_cast<std::size_t>(count));
@@ -649,7 +666,7 @@ bool readInstanceFile(const std::filesystem::path& path, std::vector<CacheGeomet
 }
 
 // Written to a temporary sibling and renamed into place, so a reader never sees half a file.
-void writeInstanceFile(const std::filesystem::path& path, const std::vector<CacheGeometry>& caches)
+void writeInstanceFile(const std::filesystem::path& path, const std::string& key, const std::vector<CacheGeometry>& caches)
 {
     std::error_code ec;
     std::filesystem::create_directories(path.parent_path(), ec);
@@ -660,10 +677,11 @@ void writeInstanceFile(const std::filesystem::path& path, const std::vector<Cach
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         const std::uint32_t version = kFileVersion, reserved = 0;
-        const std::uint64_t count = caches.size(), checksum = payloadChecksum(caches);
+        const std::uint64_t storedKey = keyDigest(key), count = caches.size(), checksum = payloadChecksum(caches);
         out.write(kFileMagic, sizeof kFileMagic);
         out.write(reinterpret_cast<const char*>(&version), sizeof version);
         out.write(reinterpret_cast<const char*>(&reserved), sizeof reserved);
+        out.write(reinterpret_cast<const char*>(&storedKey), sizeof storedKey);
         out.write(reinterpret_cast<const char*>(&count), sizeof count);
         out.write(reinterpret_cast<const char*>(caches.data()),
                   static_cast<std::streamsize>(caches.size() * sizeof(CacheGeometry)));
@@ -789,18 +807,19 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
         const Instance& instance = scene.instances[static_cast<std::size_t>(i)];
         std::vector<CacheGeometry> geometry;
         std::filesystem::path file;
+        std::string key;
         bool loaded = false;
         if (!cacheDir.empty()) {
-            file = std::filesystem::path(cacheDir) / "lightskin" /
-                   (instanceKey(scene, instance, set.distance, params) + ".bin");
-            loaded = readInstanceFile(file, geometry);
+            key = instanceKey(scene, instance, set.distance, params);
+            file = std::filesystem::path(cacheDir) / "lightskin" / (key + ".bin");
+            loaded = readInstanceFile(file, key, geometry);
         }
         if (loaded) {
             ++set.instancesLoaded;
         } else {
             geometry = distributeInstance(scene, instance, set.distance, params);
             ++set.instancesComputed;
-            if (!cacheDir.empty()) writeInstanceFile(file, geometry);
+            if (!cacheDir.empty()) writeInstanceFile(file, key, geometry);
         }
         const std::size_t material =
             static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(instance.mesh)].material);

@@ -26,7 +26,8 @@
 //
 // Per model: the paper distributes per model in model space; our scenes are instances of meshes, so
 // caches are distributed per instance in world space, and the disk cache is keyed by the hash of the
-// mesh's positions, normals and indices, the instance transform and the resolved parameters.
+// mesh's positions, normals and indices, the instance transform, the resolved parameters and the
+// algorithm's constants (file version, direction bins, split epsilon); the file stores its key too.
 //
 // References: Lensing & Broll 2013 (LightSkin), Lensing 2014 (thesis); the BRSM + LightSkin paper in
 // ../shared/papers/004_e7a2a609166487da.txt; ../shared/MATH.md section 9.
@@ -101,8 +102,9 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
 
 // Distributes caches over every instance's triangles (see "per model" above), with progress
 // ("lightskin caches", instances done / total), reading and writing the on-disk cache under
-// `cacheDir` ("" = no disk cache): cacheDir/lightskin/<hex>.bin per instance. A missing, corrupt or
-// truncated file is recomputed (a warning on stderr for the last two); a file that cannot be written
+// `cacheDir` ("" = no disk cache): cacheDir/lightskin/<hex>.bin per instance. A missing, corrupt,
+// truncated or misnamed (another key's) file is recomputed (a warning on stderr for all but the
+// first); a file that cannot be written
 // is a warning, not an error. Deterministic: the same input gives the same bits at any TBB thread count.
 LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params, const ProgressSink& progress,
                                     const std::string& cacheDir);

@@ -470,7 +470,7 @@ TEST_CASE("light caches: the disk cache hits, misses on a changed vertex or para
         CHECK(changed.instancesComputed == users);
         CHECK(changed.instancesLoaded == instances - users);
     }
-    SECTION("a truncated or corrupted file is recomputed, to the same result")
+    SECTION("a truncated, corrupted or misnamed file is recomputed, to the same result")
     {
         std::filesystem::resize_file(files[0], std::filesystem::file_size(files[0]) - 5);
         {
@@ -482,9 +482,11 @@ TEST_CASE("light caches: the disk cache hits, misses on a changed vertex or para
             std::ofstream f(files[2], std::ios::binary | std::ios::trunc);
             f << "not a cache";
         }
+        // A valid file under another instance's name (copied over it): the key inside tells.
+        std::filesystem::copy_file(files[4], files[3], std::filesystem::copy_options::overwrite_existing);
         const LightCacheSet repaired = distribute(scene, params, dir.string());
-        CHECK(repaired.instancesComputed == 3);
-        CHECK(repaired.instancesLoaded == instances - 3);
+        CHECK(repaired.instancesComputed == 4);
+        CHECK(repaired.instancesLoaded == instances - 4);
         CHECK(sameBits(first, repaired));
         // ... and rewritten: the next call loads everything again.
         CHECK(distribute(scene, params, dir.string()).instancesLoaded == instances);
