@@ -67,7 +67,8 @@ void main()
         // (a light on the floor's own plane is not behind it: float noise decided that side and
         // took 7% of an open wall's light).
         float cacheSide = dot(on, cp - op);
-        float margin = kOccluderPlaneMargin * length(op - cp);
+        float distance = length(op - cp);
+        float margin = kOccluderPlaneMargin * distance;
         bool anyCandidate = false;
         bool candidates[kOcclusionCells];
         for (int g = 0; g < kOcclusionCells; ++g) {
@@ -78,7 +79,6 @@ void main()
         }
         if (!anyCandidate) continue;
         vec3 square = projectDiskToUnitDisk(op - cp, on, o.positionArea.w, diskFrame);
-        float distance = length(op - cp);
         for (int g = 0; g < kOcclusionCells; ++g)
             if (candidates[g]) overlap[g] += occlusionBehind(distance, depths[g]) * squareOverlap(squares[g], square);
     }
@@ -90,11 +90,11 @@ void main()
         barrier();
     }
     if (lane != 0u) return;
-    // Each proxy's visibility: the share-weighted mean of its spheres' 1 - occlusion.
+    // Each proxy's visibility: the share-weighted mean of its targets' 1 - occlusion.
     vec2 visible = vec2(0.0), total = vec2(0.0);
     for (int g = 0; g < kOcclusionCells; ++g) {
-        float sphereVisible = 1.0 - occlusionFromOverlap(sOverlap[g][0], squares[g].z);
-        visible += shares[g] * sphereVisible;
+        float targetVisible = 1.0 - occlusionFromOverlap(sOverlap[g][0], squares[g].z);
+        visible += shares[g] * targetVisible;
         total += shares[g];
     }
     proxies[cache].diffuseFlux.w = total.x > 0.0 ? visible.x / total.x : 1.0;
