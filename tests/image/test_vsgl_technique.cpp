@@ -160,6 +160,41 @@ gl::Texture uploadImportance(const char* name, const std::vector<glm::vec4>& val
     return map;
 }
 
+// Binds the RSM's attachments, and the importance mips when given, with a trilinear sampler, as the
+// VSGL technique reads them; the samplers are unbound when it goes out of scope.
+class TrilinearInputs {
+public:
+    TrilinearInputs(const gl::RenderTarget& rsm, const gl::Texture* importanceMips)
+        : mSampler("VSGL test trilinear", trilinearDesc())
+    {
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
+            glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), rsm.color(a).id());
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), mSampler.id());
+        }
+        if (importanceMips) {
+            glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), importanceMips->id());
+            glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), mSampler.id());
+        }
+    }
+    ~TrilinearInputs()
+    {
+        for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
+            glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+        glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), 0);
+    }
+    TrilinearInputs(const TrilinearInputs&) = delete;
+    TrilinearInputs& operator=(const TrilinearInputs&) = delete;
+
+private:
+    static gl::SamplerDesc trilinearDesc()
+    {
+        gl::SamplerDesc desc;
+        desc.minFilter = GL_LINEAR_MIPMAP_LINEAR;
+        return desc;
+    }
+    gl::Sampler mSampler;
+};
+
 } // namespace
 
 TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match a CPU evaluation", "[vsgl][numbers]")
@@ -185,17 +220,11 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     gl::Buffer drawBuffer("VSGL test draws", static_cast<GLsizeiptr>(draws.size() * sizeof(shared::ImportanceSample)),
                           draws.data());
     gl::Buffer lightBuffer("VSGL test lights", count * static_cast<GLsizeiptr>(sizeof(shared::VSGLight)));
-    gl::SamplerDesc trilinearDesc;
-    trilinearDesc.minFilter = GL_LINEAR_MIPMAP_LINEAR;
-    gl::Sampler trilinearSampler("VSGL test trilinear", trilinearDesc);
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
-        glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), rsm.color(a).id());
-        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), trilinearSampler.id());
-    }
     const ComputePass generate = drawGeneration(count, size, levels, k, drawBuffer, lightBuffer);
-    generate.dispatch(count, 1, NextRead::BufferReadback);
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
-        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
+    {
+        const TrilinearInputs inputs(rsm, nullptr);
+        generate.dispatch(count, 1, NextRead::BufferReadback);
+    }
     const std::vector<shared::VSGLight> gpu = test::readBuffer<shared::VSGLight>(lightBuffer, count);
 
     double worstPosition = 0.0, worstRadius = 0.0, worstFlux = 0.0, worstNormal = 0.0, worstAxis = 0.0,
@@ -273,18 +302,14 @@ TEST_CASE("VSGL generation: mip level, radius, flux and lobe of each draw match 
     gl::Buffer consistentBuffer("VSGL test draws with importance",
                                 static_cast<GLsizeiptr>(consistent.size() * sizeof(shared::ImportanceSample)),
                                 consistent.data());
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
-        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), trilinearSampler.id());
-    glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), importanceMap.id());
-    glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), trilinearSampler.id());
     bindStorageBuffer(shared::kBindingImportanceSamples, consistentBuffer);
     generate.program().set("uFootprint", 1);
     generate.program().set("uMaxLeaf", 12); // no cap
-    generate.dispatch(count, 1, NextRead::BufferReadback);
+    {
+        const TrilinearInputs inputs(rsm, &importanceMap);
+        generate.dispatch(count, 1, NextRead::BufferReadback);
+    }
     generate.program().set("uFootprint", 0);
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
-        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
-    glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), 0);
     const std::vector<shared::VSGLight> cells = test::readBuffer<shared::VSGLight>(lightBuffer, count);
     double worstCellFlux = 0.0, worstCellPosition = 0.0;
     std::vector<int> leaves;
@@ -371,15 +396,7 @@ TEST_CASE("VSGL cell footprints are unbiased: over every texel, sum_j P_j N Phi_
     gl::Buffer drawBuffer("VSGL test every texel",
                           static_cast<GLsizeiptr>(everyTexel.size() * sizeof(shared::ImportanceSample)), everyTexel.data());
     gl::Buffer lightBuffer("VSGL test lights", texels * static_cast<GLsizeiptr>(sizeof(shared::VSGLight)));
-    gl::SamplerDesc trilinearDesc;
-    trilinearDesc.minFilter = GL_LINEAR_MIPMAP_LINEAR;
-    gl::Sampler trilinearSampler("VSGL test trilinear", trilinearDesc);
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a) {
-        glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), rsm.color(a).id());
-        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), trilinearSampler.id());
-    }
-    glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), importanceMap.id());
-    glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), trilinearSampler.id());
+    const TrilinearInputs inputs(rsm, &importanceMap);
     // k = 16: leaves from level 0 (the spots) to level 5 (the dim floor far from the view factor).
     const float k = 16.0f;
     const ComputePass generate = drawGeneration(texels, size, levels, k, drawBuffer, lightBuffer);
@@ -397,9 +414,6 @@ TEST_CASE("VSGL cell footprints are unbiased: over every texel, sum_j P_j N Phi_
                            lights[static_cast<std::size_t>(j)].flux.r;
         ratio[run] = expectation / totalFlux;
     }
-    for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
-        glBindSampler(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
-    glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), 0);
     MEASURED("VSGL estimator's expectation / RSM flux on concentrated importance (k = " << k << ", N = " << texels
              << "): cell 1 + " << ratio[1] - 1.0 << ", cell with leaves capped at level 2: 1 + " << ratio[2] - 1.0
              << ", texel (the paper's reading) " << ratio[0]);
