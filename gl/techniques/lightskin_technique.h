@@ -26,8 +26,10 @@
 //  proxy lights    lightskin_proxy.comp: per cache and chunk of VALs, the sums of the selected VALs
 //                  (or all: lightskin-full); lightskin_proxy_finalize.comp: the diffuse and glossy
 //                  proxy lights from them (eq. 13-15, 6, 7)
-//  occlusion       lightskin_occlusion.comp: double projection of the proxies' bounding spheres and
-//                  the other caches' disks (section 3, "Occlusion"); lightskin.occlusion=false skips it
+//  occlusion       lightskin_occlusion.comp: double projection of the light (per occlusion cell of
+//                  the cache's unit disk, ours; or the proxies' bounding spheres, the paper's) and
+//                  the other caches' disks (section 3, "Occlusion"); lightskin.occlusion=false skips
+//                  it, lightskin.tracedOcclusion traces each cache's visibility with Embree instead
 //  interpolation   lightskin_shading.frag: every pixel finds its <= 16 nearest caches, interpolates
 //                  the proxies (eq. 8-9) and shades with them
 //
