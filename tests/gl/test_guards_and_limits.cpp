@@ -30,6 +30,29 @@
 
 using namespace vplgi;
 
+namespace {
+
+// A frame uniform block with only the camera position set (what LightSkin's passes read of it),
+// bound while the object lives.
+class CameraFrame {
+public:
+    explicit CameraFrame(const glm::vec3& camera)
+    {
+        shared::FrameUniforms frame{};
+        frame.cameraPosition = glm::vec4(camera, 1.0f);
+        mBuffer = gl::Buffer("guard test frame", static_cast<GLsizeiptr>(sizeof(frame)), &frame);
+        glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, mBuffer.id());
+    }
+    ~CameraFrame() { glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, 0); }
+    CameraFrame(const CameraFrame&) = delete;
+    CameraFrame& operator=(const CameraFrame&) = delete;
+
+private:
+    gl::Buffer mBuffer;
+};
+
+} // namespace
+
 TEST_CASE("VPL/VSGL generation: a light whose flux overflows is dropped, not infinite", "[guards][vsgl]")
 {
     test::ensureGLContext();
@@ -124,10 +147,7 @@ TEST_CASE("lightskin: a proxy whose sums are not finite passes on no light, the 
     gl::Buffer proxyBuffer("guard test proxies", 2 * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
     gl::Buffer targetBuffer("guard test targets",
                             2 * shared::kOcclusionCells * static_cast<GLsizeiptr>(sizeof(shared::OcclusionTarget)));
-    shared::FrameUniforms frame{};
-    frame.cameraPosition = glm::vec4(0.0f, 5.0f, 5.0f, 1.0f);
-    gl::Buffer frameBuffer("guard test frame", static_cast<GLsizeiptr>(sizeof(frame)), &frame);
-    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, frameBuffer.id());
+    const CameraFrame frame(glm::vec3(0.0f, 5.0f, 5.0f));
     bindStorageBuffer(shared::kBindingLightCaches, cacheBuffer);
     bindStorageBuffer(shared::kBindingProxySums, sumBuffer);
     bindStorageBuffer(shared::kBindingProxyLights, proxyBuffer);
@@ -146,7 +166,6 @@ TEST_CASE("lightskin: a proxy whose sums are not finite passes on no light, the 
     // Cache 1: the VAL's proxy 2 m above it, with flux 4 pi L d^2 / (f_r cos) = 16 pi (f_r = 1).
     CHECK(proxies[1].diffusePositionRadius.y == Approx(2.0f));
     CHECK(proxies[1].diffuseFlux.x == Approx(16.0 * 3.14159265358979323846).epsilon(1e-5));
-    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, 0);
 }
 
 TEST_CASE("lightskin: a pixel skips a cache whose proxy is not finite and keeps the others", "[guards][lightskin]")
@@ -200,10 +219,7 @@ TEST_CASE("lightskin: a pixel skips a cache whose proxy is not finite and keeps 
                           cellStart.data());
     gl::Buffer indexBuffer("guard indices", static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
                            indices.data());
-    shared::FrameUniforms frame{};
-    frame.cameraPosition = glm::vec4(0.0f, 3.0f, 3.0f, 1.0f);
-    gl::Buffer frameBuffer("guard frame", static_cast<GLsizeiptr>(sizeof(frame)), &frame);
-    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, frameBuffer.id());
+    const CameraFrame frame(glm::vec3(0.0f, 3.0f, 3.0f));
     bindStorageBuffer(shared::kBindingLightCaches, cacheBuffer);
     bindStorageBuffer(shared::kBindingProxyLights, proxyBuffer);
     bindStorageBuffer(shared::kBindingLightCacheCells, cellBuffer);
@@ -226,7 +242,6 @@ TEST_CASE("lightskin: a pixel skips a cache whose proxy is not finite and keeps 
         CHECK(std::isfinite(p.r));
         CHECK(p.r == Approx(0.5 / 3.14159265358979 * 10.0 / (4.0 * 3.14159265358979) / 4.0).epsilon(1e-4));
     }
-    glBindBufferBase(GL_UNIFORM_BUFFER, shared::kBindingFrame, 0);
     for (const auto& [unit, t] : units) glBindTextureUnit(static_cast<GLuint>(unit), 0);
 }
 
