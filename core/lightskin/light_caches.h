@@ -92,8 +92,11 @@ struct LightCacheSet {
     LightCacheGrid grid;
     float distance = 0;                       // the d_eps used [m] (resolved when params.distance = 0)
     std::vector<std::uint32_t> instanceStart; // caches of instance i: [instanceStart[i], instanceStart[i+1])
-    int instancesLoaded = 0;                  // instances read from the disk cache
-    int instancesComputed = 0;                // instances distributed (and written when a cacheDir is given)
+    // Each cache's reach record (glsl/shared/light_cache_lookup.h; traceLightCacheReach in
+    // traced_visibility.h): empty = no reach test, as the paper.
+    std::vector<glm::uvec4> reach;
+    int instancesLoaded = 0;   // instances read from the disk cache
+    int instancesComputed = 0; // instances distributed (and written when a cacheDir is given)
 };
 
 // The d_eps that `params` ask for on `scene`: params.distance, or the automatic rule above when it is 0.
@@ -130,15 +133,21 @@ inline glm::vec3 lightCacheNormal(const LightCacheSet& set, int cache)
 {
     return set.caches[static_cast<std::size_t>(cache)].normal;
 }
+inline glm::uvec4 lightCacheReach(const LightCacheSet& set, int cache)
+{
+    return set.reach.empty() ? glm::uvec4(shared::kLightCacheReachOpen) : set.reach[static_cast<std::size_t>(cache)];
+}
 
-// The k <= 16 nearest caches to x facing n (n . n_c > 0) within the grid's cell size, nearest first
-// (the C++ instance of glsl/shared/light_cache_lookup.h). Returns out.count.
+// The k <= 16 nearest caches to x facing n (n . n_c > 0) within the grid's cell size, nearest first,
+// within their reach when set.reach is filled (the C++ instance of glsl/shared/light_cache_lookup.h).
+// Returns out.count.
 inline int nearestLightCaches(const LightCacheSet& set, const glm::vec3& x, const glm::vec3& n,
                               shared::LightCacheNeighbours& out, int k = shared::kMaxLightCacheNeighbours)
 {
     out.count = 0;
     if (set.grid.cellStart.empty()) return 0;
-    shared::findNearestLightCaches(set, set.grid.origin, set.grid.cellSize, set.grid.dims, x, n, k, out);
+    shared::findNearestLightCaches(set, set.grid.origin, set.grid.cellSize, set.grid.dims, x, n, k, !set.reach.empty(),
+                                   out);
     return out.count;
 }
 

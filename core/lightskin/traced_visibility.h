@@ -33,4 +33,11 @@ struct TracedVAL {
 std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<LightCache>& caches,
                                         const std::vector<TracedVAL>& vals, int samples, std::uint32_t seed);
 
+// Each cache's reach record (glsl/shared/light_cache_lookup.h, lightCacheReaches) for the search
+// radius `radius`: 16 rays per cache from kLightCacheReachLift radius above it, along
+// lightCacheReachDirection, each hit's distance (in the tangent plane for the azimuths) floored to
+// 1/255 of the radius. Any surface stops a ray, from either side. Deterministic; not in the paper.
+std::vector<glm::uvec4> traceLightCacheReach(const RayScene& rays, const std::vector<LightCache>& caches,
+                                             float radius);
+
 } // namespace vplgi

@@ -26,6 +26,13 @@ glm::ivec3 perCacheInvocations(int caches)
     return glm::ivec3(shared::kLightSkinGroupSize, std::max(rows, 1), std::max(slices, 1));
 }
 
+// A buffer holding `data`; one element's room when it is empty (GL has no empty buffer).
+template <typename T> gl::Buffer storageBufferOf(const std::string& name, const std::vector<T>& data)
+{
+    const auto bytes = static_cast<GLsizeiptr>(std::max<std::size_t>(data.size(), 1) * sizeof(T));
+    return gl::Buffer(name, bytes, data.empty() ? nullptr : data.data());
+}
+
 } // namespace
 
 void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
@@ -40,7 +47,8 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
         v.field("lightskin.importanceClamp", importanceClamp, 1e-6f, 1e6f,
                 "eq. (11): the squared distance in the importance is clamped to at least clamp^2 [m] (the paper: 1)");
         v.field("lightskin.seed", seed, "seed of the selection");
-        v.field("lightskin.animateSeed", animateSeed, "new selection uniforms every frame (default: the same every frame)");
+        v.field("lightskin.animateSeed", animateSeed,
+                "new selection uniforms every frame (default: the same every frame)");
     }
     v.field("lightskin.weightEpsilon", weightEpsilon, 0.0f, 1.0f,
             "epsilon_p of eq. (6), keeps the proxy position defined where no VAL reaches the cache");
@@ -48,6 +56,12 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
             "weight the proxy position (eq. 5/13) by the VALs' flux too (MATH.md 9.3; not in the paper)");
     v.field("lightskin.interpolationExponent", interpolationExponent, 0.0f, 16.0f,
             "p of eq. (8): the distance falloff of the cache weights (the paper gives none; 1 = linear)");
+    v.field("lightskin.fixedRadius", fixedRadius,
+            "eq. (8)'s d_max is the search radius d_eps (not in the paper); false: the distance of the farthest "
+            "cache of the set (the paper)");
+    v.field("lightskin.reach", reach,
+            "a cache lights only points within its reach, traced with Embree when the caches are made: not "
+            "behind a wall, above a ceiling or behind its own surface (not in the paper; light_cache_lookup.h)");
     v.field("lightskin.occlusion", occlusion, "indirect occlusion by double projection (section 3)");
     v.field("lightskin.occlusionCells", occlusionCells,
             "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
@@ -83,7 +97,7 @@ void LightSkinTechnique::createPasses(const gl::ShaderLoader& shaders)
     mOcclusionPass = ComputePass(shaders, "double projection", "passes/lightskin_occlusion.comp");
     mShading = std::make_unique<FullscreenPass>(shaders, "interpolation", "passes/lightskin_shading.frag");
     mCacheViewProgram = shaders.load("LightSkin cache view", {{GL_VERTEX_SHADER, "passes/lightskin_caches.vert"},
-                                                             {GL_FRAGMENT_SHADER, "passes/lightskin_caches.frag"}});
+                                                              {GL_FRAGMENT_SHADER, "passes/lightskin_caches.frag"}});
 }
 
 void LightSkinTechnique::setScene(const SceneContext& context)
@@ -106,21 +120,15 @@ void LightSkinTechnique::uploadCaches()
     // $VPLGI_CACHE_DIR or out/cache; core/lightskin/light_caches.h adds its own subfolder.
     mCaches = distributeLightCaches(*mScene, mParams.caches, mProgress, cacheDirectory("out/cache"));
     mCachesStale = false;
+    // The reach records (issue "LightSkin's indirect shadows", part 2; not in the paper) for the
+    // grid's search radius; without lightskin.reach the lookup skips the test, as the paper.
+    if (mParams.reach) mCaches.reach = traceLightCacheReach(mRays->get(), mCaches.caches, mCaches.grid.cellSize);
     const auto count = static_cast<GLsizeiptr>(std::max<std::size_t>(mCaches.caches.size(), 1));
     static_assert(sizeof(LightCache) == sizeof(shared::GpuLightCache), "LightCache is uploaded as GpuLightCache");
-    mCacheBuffer = gl::Buffer("light caches", count * static_cast<GLsizeiptr>(sizeof(shared::GpuLightCache)));
-    if (!mCaches.caches.empty())
-        mCacheBuffer.upload(0, static_cast<GLsizeiptr>(mCaches.caches.size() * sizeof(LightCache)), mCaches.caches.data());
-    const LightCacheGrid& grid = mCaches.grid;
-    mCellBuffer = gl::Buffer("light cache cells",
-                             static_cast<GLsizeiptr>(std::max<std::size_t>(grid.cellStart.size(), 1) * sizeof(std::uint32_t)));
-    if (!grid.cellStart.empty())
-        mCellBuffer.upload(0, static_cast<GLsizeiptr>(grid.cellStart.size() * sizeof(std::uint32_t)), grid.cellStart.data());
-    mIndexBuffer = gl::Buffer("light cache indices",
-                              static_cast<GLsizeiptr>(std::max<std::size_t>(grid.cacheIndices.size(), 1) * sizeof(std::uint32_t)));
-    if (!grid.cacheIndices.empty())
-        mIndexBuffer.upload(0, static_cast<GLsizeiptr>(grid.cacheIndices.size() * sizeof(std::uint32_t)),
-                            grid.cacheIndices.data());
+    mCacheBuffer = storageBufferOf("light caches", mCaches.caches);
+    mCellBuffer = storageBufferOf("light cache cells", mCaches.grid.cellStart);
+    mIndexBuffer = storageBufferOf("light cache indices", mCaches.grid.cacheIndices);
+    mReachBuffer = storageBufferOf("light cache reach", mCaches.reach);
     mProxies = gl::Buffer("proxy lights", count * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
     mOcclusionTargets = gl::Buffer("occlusion targets", count * shared::kOcclusionCells *
                                                             static_cast<GLsizeiptr>(sizeof(shared::OcclusionTarget)));
@@ -136,7 +144,7 @@ void LightSkinTechnique::applyParamChanges(const std::set<std::string>& changedK
 {
     // A changed distribution parameter redistributes the caches (from the disk cache when it has them).
     for (const std::string& key : changedKeys)
-        if (key.rfind("lightskin.cache", 0) == 0) mCachesStale = true;
+        if (key.rfind("lightskin.cache", 0) == 0 || key == "lightskin.reach") mCachesStale = true;
 }
 
 void LightSkinTechnique::update(const FrameContext&)
@@ -188,8 +196,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         {
             gl::PassTimer::Scope scope(frame.timer, "importance");
             // Eq. (10)'s view samples: the G-buffer at Halton points (MATH.md 9.8).
-            const auto sampleBytes = static_cast<GLsizeiptr>(mParams.viewSamples) *
-                                     static_cast<GLsizeiptr>(sizeof(shared::ViewSample));
+            const auto sampleBytes =
+                static_cast<GLsizeiptr>(mParams.viewSamples) * static_cast<GLsizeiptr>(sizeof(shared::ViewSample));
             if (mViewSamples.size() < sampleBytes) mViewSamples = gl::Buffer("view samples", sampleBytes);
             gbuffer.bindForReading();
             bindStorageBuffer(shared::kBindingViewSamples, mViewSamples);
@@ -219,9 +227,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         }
         {
             gl::PassTimer::Scope scope(frame.timer, "selection");
-            const std::uint32_t seed = mParams.animateSeed
-                                           ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
-                                           : mParams.seed;
+            const std::uint32_t seed =
+                mParams.animateSeed ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u)) : mParams.seed;
             mSampler->sample(mImportance, mParams.valCount, seed, NextRead::StorageBuffer);
         }
         // The importance view's range: 20x the mean texel importance, read back only while it is shown.
@@ -304,16 +311,19 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         gbuffer.bindForReading();
         bindStorageBuffer(shared::kBindingLightCacheCells, mCellBuffer);
         bindStorageBuffer(shared::kBindingLightCacheIndices, mIndexBuffer);
+        bindStorageBuffer(shared::kBindingLightCacheReach, mReachBuffer);
         const gl::Program& shading = mShading->program();
         const LightCacheGrid& grid = mCaches.grid;
         shading.set("uGridOrigin", grid.origin);
         shading.set("uGridCellSize", grid.cellSize);
         glProgramUniform3i(shading.id(), shading.uniformLocation("uGridDims"), grid.dims.x, grid.dims.y, grid.dims.z);
         shading.set("uExponent", mParams.interpolationExponent);
+        shading.set("uReach", mCaches.reach.empty() ? 0 : 1);
+        shading.set("uFixedRadius", mParams.fixedRadius ? 1 : 0);
         mShading->render(mShaded);
     }
-    glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0, 0,
-                       0, 0, frame.width, frame.height, 1);
+    glCopyImageSubData(mShaded.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, target.radiance().id(), GL_TEXTURE_2D, 0, 0, 0,
+                       0, frame.width, frame.height, 1);
     for (int a = 0; a < shared::kRSMAttachmentCount; ++a)
         glBindTextureUnit(static_cast<GLuint>(shared::kUnitRSMSource + a), 0);
     if (frame.display == std::string(name()) + ".caches") drawCacheView(frame);
@@ -365,7 +375,8 @@ void LightSkinTechnique::traceOcclusion(int size, int layers)
     std::vector<shared::ProxyLight> proxies(mCaches.caches.size());
     const auto bytes = static_cast<GLsizeiptr>(proxies.size() * sizeof(shared::ProxyLight));
     glGetNamedBufferSubData(mProxies.id(), 0, bytes, proxies.data());
-    for (std::size_t i = 0; i < proxies.size(); ++i) proxies[i].diffuseFlux.w = proxies[i].glossyFlux.w = visibility[i];
+    for (std::size_t i = 0; i < proxies.size(); ++i)
+        proxies[i].diffuseFlux.w = proxies[i].glossyFlux.w = visibility[i];
     mProxies.upload(0, bytes, proxies.data());
 }
 
@@ -404,11 +415,16 @@ std::vector<DebugView> LightSkinTechnique::debugViews() const
     views.push_back({t + ".caches", "the light caches as points coloured by the radiance of their diffuse proxy",
                      mCacheView ? &mCacheView.color(0) : nullptr, shared::kDebugViewColor});
     if (!mFull) {
-        views.push_back({t + ".importance", "eq. (10): importance of every RSM texel, layers side by side",
-                         mImportance ? &mImportance : nullptr, shared::kDebugViewCount,
+        views.push_back({t + ".importance",
+                         "eq. (10): importance of every RSM texel, layers side by side",
+                         mImportance ? &mImportance : nullptr,
+                         shared::kDebugViewCount,
                          {0.0f, mImportanceRange > 0.0f ? mImportanceRange : 1.0f}});
-        views.push_back({t + ".selected", "the VALs selected this frame (1), layers side by side",
-                         mSelected ? &mSelected : nullptr, shared::kDebugViewScalar, {0.0f, 1.0f}});
+        views.push_back({t + ".selected",
+                         "the VALs selected this frame (1), layers side by side",
+                         mSelected ? &mSelected : nullptr,
+                         shared::kDebugViewScalar,
+                         {0.0f, 1.0f}});
     }
     return views;
 }

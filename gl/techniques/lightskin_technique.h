@@ -71,20 +71,22 @@
 namespace vplgi {
 
 struct LightSkinParams {
-    int valCount = 2048;           // N_sVAL (section 5: 2048, 4096, 8192)
-    int viewSamples = 512;         // N_VS (section 4: 512; 256 as an option)
-    float importanceClamp = 1.0f;  // eq. (11): D(l) = max(clamp^2, |l|^2) [m] (the paper: 1)
+    int valCount = 2048;                               // N_sVAL (section 5: 2048, 4096, 8192)
+    int viewSamples = 512;                             // N_VS (section 4: 512; 256 as an option)
+    float importanceClamp = 1.0f;                      // eq. (11): D(l) = max(clamp^2, |l|^2) [m] (the paper: 1)
     float weightEpsilon = shared::kProxyWeightEpsilon; // epsilon_p of eq. (6)
-    bool fluxWeights = false;      // MATH.md 9.3: weight eq. (5)/(13) by the VAL's flux too (not in the paper)
+    bool fluxWeights = false;           // MATH.md 9.3: weight eq. (5)/(13) by the VAL's flux too (not in the paper)
     float interpolationExponent = 1.0f; // p of eq. (8) (the paper gives none; MATH.md 9.5)
-    bool occlusion = true;         // double projection (section 3)
-    bool tracedOcclusion = false;  // visibility per cache by Embree rays (the reference; not in the paper)
-    bool occlusionCells = true;    // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
-    bool exactArea = false;        // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
+    bool fixedRadius = true;      // eq. (8)'s d_max = the search radius d_eps (not in the paper: the farthest cache)
+    bool reach = true;            // each cache's traced reach limits the points it lights (not in the paper)
+    bool occlusion = true;        // double projection (section 3)
+    bool tracedOcclusion = false; // visibility per cache by Embree rays (the reference; not in the paper)
+    bool occlusionCells = true;   // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
+    bool exactArea = false;       // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
     std::uint32_t seed = 1;
     bool animateSeed = false;
-    LightCacheParams caches;       // keys lightskin.cache*
-    RSMParams rsm;                 // key rsm.size (open worlds: 1024^2-2048^2)
+    LightCacheParams caches; // keys lightskin.cache*
+    RSMParams rsm;           // key rsm.size (open worlds: 1024^2-2048^2)
 
     LightSkinParams() { rsm.size = 1024; }
     void visitParams(ParamVisitor& visitor, bool selection);
@@ -138,17 +140,18 @@ private:
     std::unique_ptr<FullscreenPass> mShading;
     gl::Program mCacheViewProgram;
     gl::VertexArray mEmptyVertexArray;
-    gl::Buffer mCacheBuffer;     // GpuLightCache[caches]
-    gl::Buffer mCellBuffer;      // uint[cells + 1]
-    gl::Buffer mIndexBuffer;     // uint[entries]
-    gl::Buffer mProxies;         // ProxyLight[caches]
-    gl::Buffer mProxySums;       // vec4[caches x chunks x kProxySumVec4s]
+    gl::Buffer mCacheBuffer;      // GpuLightCache[caches]
+    gl::Buffer mCellBuffer;       // uint[cells + 1]
+    gl::Buffer mIndexBuffer;      // uint[entries]
+    gl::Buffer mReachBuffer;      // uvec4[caches]: reach records (glsl/shared/light_cache_lookup.h), or one unused
+    gl::Buffer mProxies;          // ProxyLight[caches]
+    gl::Buffer mProxySums;        // vec4[caches x chunks x kProxySumVec4s]
     gl::Buffer mOcclusionTargets; // OcclusionTarget[caches x kOcclusionCells]
-    gl::Buffer mViewSamples;     // ViewSample[N_VS]
-    gl::Buffer mLayerViews;      // RSMLayerView[layers]
-    gl::Texture mImportance;     // R32F, (rsm.size x layers) x rsm.size
-    gl::Texture mSelected;       // R32F, as mImportance: 1 where a VAL was selected (debug view)
-    gl::RenderTarget mCacheView; // the caches as points (debug view)
+    gl::Buffer mViewSamples;      // ViewSample[N_VS]
+    gl::Buffer mLayerViews;       // RSMLayerView[layers]
+    gl::Texture mImportance;      // R32F, (rsm.size x layers) x rsm.size
+    gl::Texture mSelected;        // R32F, as mImportance: 1 where a VAL was selected (debug view)
+    gl::RenderTarget mCacheView;  // the caches as points (debug view)
     gl::RenderTarget mShaded;
     long long mVALsPerCache = 0;
     float mImportanceRange = 1.0f; // of the importance view: 20x the mean texel importance

@@ -25,17 +25,21 @@ layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightC
 layout(std430, binding = kBindingLightCacheCells) readonly buffer Cells { uint cellStart[]; };
 layout(std430, binding = kBindingLightCacheIndices) readonly buffer Indices { uint cacheIndices[]; };
 layout(std430, binding = kBindingProxyLights) readonly buffer Proxies { ProxyLight proxies[]; };
+layout(std430, binding = kBindingLightCacheReach) readonly buffer Reach { uvec4 reach[]; };
 
 uint lightCacheCellStart(int cell) { return cellStart[cell]; }
 uint lightCacheIndex(int i) { return cacheIndices[i]; }
 vec3 lightCachePosition(int cache) { return caches[cache].positionArea.xyz; }
 vec3 lightCacheNormal(int cache) { return caches[cache].normalRoughness.xyz; }
+uvec4 lightCacheReach(int cache) { return reach[cache]; }
 #include "../shared/light_cache_lookup.h"
 
 uniform vec3 uGridOrigin;
 uniform float uGridCellSize;
 uniform ivec3 uGridDims;
 uniform float uExponent; // p of eq. (8)
+uniform int uReach;      // 1: each cache's reach limits its points (lightskin.reach; not in the paper)
+uniform int uFixedRadius; // 1: d_max of eq. (8) is the search radius (lightskin.fixedRadius; not in the paper)
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -77,9 +81,11 @@ void main()
     vec3 f0 = mix(vec3(0.04 * specularFactor), baseMetallic.rgb, baseMetallic.a);
 
     LightCacheNeighbours near;
-    findNearestLightCaches(uGridOrigin, uGridCellSize, uGridDims, x, ni, kMaxLightCacheNeighbours, near);
+    findNearestLightCaches(uGridOrigin, uGridCellSize, uGridDims, x, ni, kMaxLightCacheNeighbours, uReach != 0, near);
     if (near.count == 0) return;
-    float maxDistance = sqrt(near.distance2[near.count - 1]);
+    // d_max of eq. (8): the paper's farthest cache of the set moves when a cache enters or leaves the
+    // set (a seam between pixels with different sets); the fixed search radius does not.
+    float maxDistance = uFixedRadius != 0 ? uGridCellSize : sqrt(near.distance2[near.count - 1]);
     vec3 sumPositionD = vec3(0.0), sumFluxD = vec3(0.0), sumPositionG = vec3(0.0), sumFluxG = vec3(0.0);
     float sumD = 0.0, sumG = 0.0;
     for (int i = 0; i < near.count; ++i) {
@@ -92,9 +98,9 @@ void main()
             continue;
         vec3 cp = caches[index].positionArea.xyz;
         vec3 cn = caches[index].normalRoughness.xyz;
-        // A single cache, or several at the same distance, would all get weight 0: weigh them equally
-        // (distance 0; not in the paper).
-        float distance = near.distance2[0] >= near.distance2[near.count - 1] ? 0.0 : sqrt(near.distance2[i]);
+        // With the paper's d_max, a single cache, or several at the same distance, would all get weight 0:
+        // weigh them equally (distance 0; not in the paper).
+        float distance = uFixedRadius == 0 && near.distance2[0] >= near.distance2[near.count - 1] ? 0.0 : sqrt(near.distance2[i]);
         float wd = interpolationWeight(distance, maxDistance, uExponent, dot(ni, cn));
         vec3 gp = p.glossyPositionRadius.xyz;
         vec3 rx = mirrorDirection(normalize(gp - x), ni), rc = mirrorDirection(normalize(gp - cp), cn);

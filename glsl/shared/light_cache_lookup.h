@@ -19,9 +19,18 @@
 // The result is sorted by (squared distance, cache index): insertion into a fixed array of k slots,
 // with the index breaking ties, so the set does not depend on the order cells are visited.
 //
-// The includer provides four readers, declared before including this header:
+// Reach (ours, not in the paper; issue "LightSkin's indirect shadows", part 2): eq. (8) weighs caches
+// by distance and normal only, so a cache on a floor lights the coplanar floor behind a wall, and a
+// floor cache the floor of the storey above. Each cache carries its reach (lightCacheReaches): how
+// far it sees along 15 directions around its normal, rising at kLightCacheReachSlope, and straight up
+// its normal, traced once with Embree when the caches are made (core/lightskin/light_caches.h,
+// traceLightCacheReach). A point beyond a cache's reach, or behind the cache's own surface, is not a
+// candidate of that cache.
+//
+// The includer provides five readers, declared before including this header:
 //   GLSL: uint lightCacheCellStart(int cell); uint lightCacheIndex(int i);
 //         vec3 lightCachePosition(int cache); vec3 lightCacheNormal(int cache);
+//         uvec4 lightCacheReach(int cache);
 //   C++:  the same functions with a leading `const Caches&` argument, found by argument-dependent
 //         lookup when findNearestLightCaches<Caches> is instantiated.
 // LightCacheNeighbours holds arrays: it is a function-local result, never uploaded, so the "no
@@ -29,6 +38,7 @@
 #ifndef VPLGI_SHARED_LIGHT_CACHE_LOOKUP_H
 #define VPLGI_SHARED_LIGHT_CACHE_LOOKUP_H
 #include "compat.h"
+#include "light_view.h"
 
 #ifdef __cplusplus
 #define VPLGI_CACHES_TEMPLATE template <typename Caches>
@@ -56,50 +66,177 @@ VPLGI_FUNC bool lightCacheBefore(float d2, int i, float e2, int j)
     return d2 < e2 || (d2 == e2 && i < j);
 }
 
+// --- Reach -----------------------------------------------------------------------------------------
+// A cache's reach record is one uvec4 of 16 bytes (byte i is bits 8 (i % 4) .. +7 of word i / 4):
+// bytes 0-14 the reach along the directions at azimuths 2 pi i / 15 in the cache's frame
+// (lightViewBasis: x, y tangents, z its normal), byte 15 the reach along the normal. A byte b is the
+// distance b / 255 of the search radius, measured in the tangent plane for the azimuths (floored: a
+// record never reaches further than the ray did); 255 = nothing within the radius.
+VPLGI_CONST int kLightCacheReachAzimuths = 15;
+// The rays start kLightCacheReachLift of the search radius above the cache (off its own surface) and
+// rise at this slope: tan 15 degrees, half the default theta_eps (LightCacheParams::angleDegrees). A
+// concave surface whose normal turns by at most theta_eps within the search radius stays below the
+// ray: the chord from the cache to a point at arc length s rises at (theta_eps / 2) (s / radius) at
+// most. The same slope bounds how far below the cache's tangent plane a point of a convex surface
+// may lie (the "behind" test).
+VPLGI_CONST float kLightCacheReachSlope = 0.26795f;
+VPLGI_CONST float kLightCacheReachLift = 1.0f / 64.0f;
+VPLGI_CONST uint kLightCacheReachOpen = 0xffffffffu; // every word of a record that reaches everywhere
+// With the reach, a cache is a candidate only within 60 degrees of the point's normal (cos 60 = 0.5):
+// a cache at right angles to the point (a wall's cache for a floor point) has an eq. (8) weight near
+// 0 but would take the whole weight where it is the only candidate, and its tangent-plane reach
+// cannot tell on which side of a wall the point lies (the sealed rooms' floor beside the shared wall
+// took the other room's wall caches). Every surface point has a cache within theta_eps = 30 degrees
+// of its normal and d_eps of its position (the distribution's guarantee), so no point loses its own.
+VPLGI_CONST float kLightCacheReachMinCos = 0.5f;
+
+// The unit direction of reach ray i (i < 15: azimuth i, rising; i = 15: along the normal).
+VPLGI_FUNC vec3 lightCacheReachDirection(vec3 normal, int i)
+{
+    if (i >= kLightCacheReachAzimuths) return normal;
+    mat3 frame = lightViewBasis(normal);
+    float azimuth = 6.28318531f * float(i) / float(kLightCacheReachAzimuths);
+    vec3 tangent = cos(azimuth) * frame[0] + sin(azimuth) * frame[1];
+    return normalize(tangent + kLightCacheReachSlope * normal);
+}
+
+// Byte i of a reach record as a distance in units of the search radius.
+VPLGI_FUNC float lightCacheReachFraction(uvec4 reach, int i)
+{
+    return float((reach[i / 4] >> uint(8 * (i % 4))) & 0xffu) / 255.0f;
+}
+
+// Where reach ray i (i < 15) stopped, in the tangent plane's (x, y) [m]; a ray that hit nothing
+// within the radius stops at the radius.
+VPLGI_FUNC vec2 lightCacheReachPoint(uvec4 reach, int i, float radius)
+{
+    float azimuth = 6.28318531f * float(i) / float(kLightCacheReachAzimuths);
+    return lightCacheReachFraction(reach, i) * radius * vec2(cos(azimuth), sin(azimuth));
+}
+
+// The distance along the unit direction u (tangent-plane coordinates) to the line through p and q,
+// at most `radius`; `radius` when u runs parallel to the line or away from it.
+VPLGI_FUNC float lightCacheReachToLine(vec2 u, vec2 p, vec2 q, float radius)
+{
+    vec2 d = q - p;
+    float denominator = u.x * d.y - u.y * d.x;
+    float t = denominator != 0.0f ? (p.x * d.y - p.y * d.x) / denominator : -1.0f;
+    return t > 0.0f ? min(t, radius) : radius;
+}
+
+// True when the point at `offset` (x - c) from a cache with normal `normal` lies within the cache's
+// reach (search radius `radius`): not behind the cache's own surface, not beyond what lies above the
+// cache, and no further along the tangent plane than the cache sees in that direction. Between two
+// azimuths whose rays both hit, the obstacle is the line through the two hits (exact for a straight
+// wall) or, beyond it, the nearer of the lines through each hit and its outer neighbour (exact in a
+// concave corner); where one of them hit nothing, the line through the other hit and the hit beyond it,
+// extended (so a wall seen from a cache beside it ends where it runs parallel to the direction, not
+// at the open ray's radius); a lone hit counts up to the half-way azimuth. Tolerance: the lift
+// (quantization takes up to 1/255 of the radius).
+VPLGI_FUNC bool lightCacheReaches(uvec4 reach, vec3 normal, vec3 offset, float radius)
+{
+    float lift = kLightCacheReachLift * radius;
+    float height = dot(normal, offset);
+    vec3 tangential = offset - height * normal;
+    float along = length(tangential);
+    if (height < -lift - kLightCacheReachSlope * along) return false; // behind the cache's surface
+    if (height > lightCacheReachFraction(reach, kLightCacheReachAzimuths) * radius + lift) return false;
+    if (along <= lift) return true;
+    mat3 frame = lightViewBasis(normal);
+    vec2 u = vec2(dot(tangential, frame[0]), dot(tangential, frame[1])) / along;
+    float azimuth = atan(u.y, u.x);
+    float s = (azimuth < 0.0f ? azimuth + 6.28318531f : azimuth) * (float(kLightCacheReachAzimuths) / 6.28318531f);
+    int n = kLightCacheReachAzimuths;
+    int i0 = min(int(floor(s)), n - 1);
+    int i1 = (i0 + 1) % n;
+    bool hit0 = lightCacheReachFraction(reach, i0) < 1.0f, hit1 = lightCacheReachFraction(reach, i1) < 1.0f;
+    float reachHere = radius;
+    if (hit0 && hit1) {
+        // The chord through the two hits, or the nearer of the walls through their outer neighbours
+        // where that lies beyond the chord: a concave corner between the rays (the chord would cut
+        // it off; the room is the intersection of its walls' half-planes).
+        int before = (i0 + n - 1) % n, i2 = (i1 + 1) % n;
+        vec2 p0 = lightCacheReachPoint(reach, i0, radius), p1 = lightCacheReachPoint(reach, i1, radius);
+        float wall0 = lightCacheReachFraction(reach, before) < 1.0f
+                          ? lightCacheReachToLine(u, lightCacheReachPoint(reach, before, radius), p0, radius)
+                          : radius;
+        float wall1 = lightCacheReachFraction(reach, i2) < 1.0f
+                          ? lightCacheReachToLine(u, p1, lightCacheReachPoint(reach, i2, radius), radius)
+                          : radius;
+        reachHere = max(lightCacheReachToLine(u, p0, p1, radius), min(wall0, wall1));
+    } else if (hit1) {
+        int i2 = (i1 + 1) % n;
+        if (lightCacheReachFraction(reach, i2) < 1.0f)
+            reachHere = lightCacheReachToLine(u, lightCacheReachPoint(reach, i1, radius),
+                                              lightCacheReachPoint(reach, i2, radius), radius);
+        else if (s - float(i0) > 0.5f)
+            reachHere = lightCacheReachFraction(reach, i1) * radius;
+    } else if (hit0) {
+        int before = (i0 + n - 1) % n;
+        if (lightCacheReachFraction(reach, before) < 1.0f)
+            reachHere = lightCacheReachToLine(u, lightCacheReachPoint(reach, before, radius),
+                                              lightCacheReachPoint(reach, i0, radius), radius);
+        else if (s - float(i0) <= 0.5f)
+            reachHere = lightCacheReachFraction(reach, i0) * radius;
+    }
+    return along <= reachHere + lift;
+}
+
 // The k (clamped to [0, 16]) nearest caches to x with n_x . n_c > 0 and |x - c| < cellSize, searched
 // in the 3 x 3 x 3 cells around x of the grid (origin, cellSize, dims). A point outside the grid
-// searches the cells of its block that exist.
+// searches the cells of its block that exist. With `useReach`, only caches whose reach holds x
+// (lightCacheReaches with the radius cellSize) and within 60 degrees of n (kLightCacheReachMinCos);
+// when no cache reaches x (0.1-0.2% of the points the
+// built-in scenes' cameras see, in doorways and tight corners where the 15 rays miss an opening),
+// the caches without the test rather than a black pixel.
 VPLGI_CACHES_TEMPLATE
 VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float cellSize, ivec3 gridDims, vec3 x,
-                                       vec3 n, int k, VPLGI_OUT(LightCacheNeighbours) result)
+                                       vec3 n, int k, bool useReach, VPLGI_OUT(LightCacheNeighbours) result)
 {
     result.count = 0;
     int slots = min(max(k, 0), kMaxLightCacheNeighbours);
     if (slots == 0) return;
     float radius2 = cellSize * cellSize;
-    vec3 cellPosition = floor((x - gridOrigin) / cellSize);
-    // Clamp before converting: a point far outside the grid must not overflow int.
-    cellPosition = clamp(cellPosition, vec3(-2.0f), vec3(gridDims) + vec3(1.0f));
-    ivec3 centre = ivec3(cellPosition);
-    for (int dz = -1; dz <= 1; ++dz) {
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                ivec3 cell = centre + ivec3(dx, dy, dz);
-                if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= gridDims.x || cell.y >= gridDims.y ||
-                    cell.z >= gridDims.z)
-                    continue;
-                int cellIndex = (cell.z * gridDims.y + cell.y) * gridDims.x + cell.x;
-                int begin = int(lightCacheCellStart(VPLGI_CACHES cellIndex));
-                int end = int(lightCacheCellStart(VPLGI_CACHES cellIndex + 1));
-                for (int i = begin; i < end; ++i) {
-                    int cache = int(lightCacheIndex(VPLGI_CACHES i));
-                    if (!(dot(n, lightCacheNormal(VPLGI_CACHES cache)) > 0.0f)) continue; // eq. (8) weight 0
-                    vec3 offset = lightCachePosition(VPLGI_CACHES cache) - x;
-                    float d2 = dot(offset, offset);
-                    if (!(d2 < radius2)) continue;
-                    if (result.count == slots &&
-                        !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
+    for (int pass = useReach ? 0 : 1; pass < 2 && result.count == 0; ++pass) {
+        vec3 cellPosition = floor((x - gridOrigin) / cellSize);
+        // Clamp before converting: a point far outside the grid must not overflow int.
+        cellPosition = clamp(cellPosition, vec3(-2.0f), vec3(gridDims) + vec3(1.0f));
+        ivec3 centre = ivec3(cellPosition);
+        for (int dz = -1; dz <= 1; ++dz) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec3 cell = centre + ivec3(dx, dy, dz);
+                    if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= gridDims.x || cell.y >= gridDims.y ||
+                        cell.z >= gridDims.z)
                         continue;
-                    // Insertion: shift the farther entries one slot up (the last one drops out when full).
-                    int j = min(result.count, slots - 1);
-                    while (j > 0 && lightCacheBefore(d2, cache, result.distance2[j - 1], result.index[j - 1])) {
-                        result.distance2[j] = result.distance2[j - 1];
-                        result.index[j] = result.index[j - 1];
-                        --j;
+                    int cellIndex = (cell.z * gridDims.y + cell.y) * gridDims.x + cell.x;
+                    int begin = int(lightCacheCellStart(VPLGI_CACHES cellIndex));
+                    int end = int(lightCacheCellStart(VPLGI_CACHES cellIndex + 1));
+                    for (int i = begin; i < end; ++i) {
+                        int cache = int(lightCacheIndex(VPLGI_CACHES i));
+                        vec3 cacheNormal = lightCacheNormal(VPLGI_CACHES cache);
+                        if (!(dot(n, cacheNormal) > 0.0f)) continue; // eq. (8) weight 0
+                        vec3 offset = x - lightCachePosition(VPLGI_CACHES cache);
+                        float d2 = dot(offset, offset);
+                        if (!(d2 < radius2)) continue;
+                        if (pass == 0 &&
+                            (!(dot(n, cacheNormal) > kLightCacheReachMinCos) ||
+                             !lightCacheReaches(lightCacheReach(VPLGI_CACHES cache), cacheNormal, offset, cellSize)))
+                            continue;
+                        if (result.count == slots &&
+                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
+                            continue;
+                        // Insertion: shift the farther entries one slot up (the last one drops out when full).
+                        int j = min(result.count, slots - 1);
+                        while (j > 0 && lightCacheBefore(d2, cache, result.distance2[j - 1], result.index[j - 1])) {
+                            result.distance2[j] = result.distance2[j - 1];
+                            result.index[j] = result.index[j - 1];
+                            --j;
+                        }
+                        result.distance2[j] = d2;
+                        result.index[j] = cache;
+                        result.count = min(result.count + 1, slots);
                     }
-                    result.distance2[j] = d2;
-                    result.index[j] = cache;
-                    result.count = min(result.count + 1, slots);
                 }
             }
         }

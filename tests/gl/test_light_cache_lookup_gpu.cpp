@@ -1,7 +1,7 @@
 // glsl/shared/light_cache_lookup.h in GLSL (tests/gl/glsl/light_cache_lookup_probe.comp) against its
-// C++ build (nearestLightCaches) on the cornell scene's light caches. That the C++ build is the
-// k-nearest search is tests/cpu/test_light_caches.cpp's job (against brute force); this proves the
-// two builds agree.
+// C++ build (nearestLightCaches) on the cornell scene's light caches, with and without their reach.
+// That the C++ build is the k-nearest search within reach is tests/cpu/test_light_caches.cpp's job
+// (against brute force); this proves the two builds agree.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/lightskin/light_caches.h"
+#include "core/lightskin/traced_visibility.h"
 #include "core/scene/builtin_scenes.h"
 #include "core/scene/surface_points.h"
 #include "gl_test_context.h"
@@ -41,11 +42,13 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
 {
     test::ensureGLContext();
     const Scene scene = makeBuiltinScene("cornell");
-    const LightCacheSet set = distributeLightCaches(scene, LightCacheParams{}, ProgressSink{}, "");
+    LightCacheSet set = distributeLightCaches(scene, LightCacheParams{}, ProgressSink{}, "");
+    const bool reach = GENERATE(false, true);
+    if (reach) set.reach = traceLightCacheReach(RayScene(scene), set.caches, set.grid.cellSize);
     const SurfacePoints points = sampleSurfacePoints(scene, 2048, 3);
     const int k = shared::kMaxLightCacheNeighbours;
 
-    std::vector<std::uint32_t> words(12, 0);
+    std::vector<std::uint32_t> words(13, 0);
     for (int i = 0; i < 3; ++i)
         words[static_cast<std::size_t>(i)] = bitsOf(set.grid.origin[i]);
     words[3] = bitsOf(set.grid.cellSize);
@@ -65,6 +68,11 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
     for (std::size_t i = 0; i < points.positions.size(); ++i) {
         pushVec3(words, points.positions[i]);
         pushVec3(words, points.normals[i]);
+    }
+    if (reach) {
+        words[12] = static_cast<std::uint32_t>(words.size());
+        for (const glm::uvec4& r : set.reach)
+            words.insert(words.end(), {r.x, r.y, r.z, r.w});
     }
     const int count = static_cast<int>(points.positions.size());
     const std::vector<glm::vec4> results =
@@ -87,8 +95,8 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
         setMismatches += same ? 0 : 1;
         found += expected.count;
     }
-    INFO("mean caches per point " << static_cast<double>(found) / count << ", worst |d^2 GPU - CPU| " << worstDistance
-                                  << " m^2, d_eps " << set.distance << " m");
+    INFO("reach " << reach << ", mean caches per point " << static_cast<double>(found) / count
+                  << ", worst |d^2 GPU - CPU| " << worstDistance << " m^2, d_eps " << set.distance << " m");
     CHECK(found > 8 * count); // the lookups found caches (about 12.6 per point within d_eps)
     // The same float operations in the same order, except that llvmpipe fuses the dot product's
     // multiply-adds: measured worst 2.3e-10 m^2, one ulp of a d^2 near d_eps^2 = 3.7e-3 m^2 (ulp 2^-32);

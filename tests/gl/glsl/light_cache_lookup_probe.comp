@@ -4,8 +4,9 @@
 // One word buffer holds everything (runComputeProbe binds one input), laid out by the test:
 //   words[0..3]   grid origin xyz, cell size (float bits)
 //   words[4..7]   grid dims xyz, k
-//   words[8..11]  offsets (in words) of: caches (8 words each: position xyz, pad, normal xyz, pad),
-//                 cellStart, cacheIndices, queries (8 words each: x xyz, pad, n xyz, pad)
+//   words[8..12]  offsets (in words) of: caches (8 words each: position xyz, pad, normal xyz, pad),
+//                 cellStart, cacheIndices, queries (8 words each: x xyz, pad, n xyz, pad), reach records
+//                 (4 words per cache; offset 0: no reach test)
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Words { uint words[]; };
@@ -19,6 +20,11 @@ uint lightCacheCellStart(int cell) { return words[int(words[9]) + cell]; }
 uint lightCacheIndex(int i) { return words[int(words[10]) + i]; }
 vec3 lightCachePosition(int cache) { return wordVec3(int(words[8]) + 8 * cache); }
 vec3 lightCacheNormal(int cache) { return wordVec3(int(words[8]) + 8 * cache + 4); }
+uvec4 lightCacheReach(int cache)
+{
+    int at = int(words[12]) + 4 * cache;
+    return uvec4(words[at], words[at + 1], words[at + 2], words[at + 3]);
+}
 
 #include "shared/light_cache_lookup.h"
 
@@ -31,7 +37,7 @@ void main()
     int query = int(words[11]) + 8 * q;
     LightCacheNeighbours found;
     findNearestLightCaches(wordVec3(0), wordFloat(3), ivec3(words[4], words[5], words[6]), wordVec3(query),
-                           wordVec3(query + 4), int(words[7]), found);
+                           wordVec3(query + 4), int(words[7]), words[12] != 0u, found);
     int base = q * kResultsPerCase;
     results[base] = vec4(float(found.count), 0.0f, 0.0f, 0.0f);
     for (int i = 0; i < 4; ++i) {
