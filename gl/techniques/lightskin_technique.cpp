@@ -66,6 +66,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     v.field("lightskin.occlusionCells", occlusionCells,
             "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
             "false: one sphere per proxy (the paper)");
+    v.field("lightskin.occluderLight", occluderLight,
+            "with occlusion cells, an occluder that the light reaches (the RSM sees it) blocks only what lies behind "
+            "it, not the light it reflects itself towards the cache (not in the paper)");
     v.field("lightskin.tracedOcclusion", tracedOcclusion,
             "each cache's visibility traced with Embree instead (the reference for the double projection; "
             "CPU, not real-time; not in the paper)");
@@ -130,6 +133,7 @@ void LightSkinTechnique::uploadCaches()
     mIndexBuffer = storageBufferOf("light cache indices", mCaches.grid.cacheIndices);
     mReachBuffer = storageBufferOf("light cache reach", mCaches.reach);
     mProxies = gl::Buffer("proxy lights", count * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
+    mCacheRadiance = gl::Buffer("cache radiance", count * static_cast<GLsizeiptr>(sizeof(float)));
     mOcclusionTargets = gl::Buffer("occlusion targets", count * shared::kOcclusionCells *
                                                             static_cast<GLsizeiptr>(sizeof(shared::OcclusionTarget)));
 }
@@ -178,6 +182,10 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         shared::RSMLayerView record;
         record.depthRow = -glm::vec4(m[0][2], m[1][2], m[2][2], m[3][2]); // the view looks down -z
         record.info = glm::vec4(view.texelFactor, view.kind == shared::kRSMLightDirectional ? 1.0f : 0.0f, 0.0f, 0.0f);
+        record.clip0 = view.clipFromWorld[0];
+        record.clip1 = view.clipFromWorld[1];
+        record.clip2 = view.clipFromWorld[2];
+        record.clip3 = view.clipFromWorld[3];
         views.push_back(record);
     }
     const auto viewBytes = static_cast<GLsizeiptr>(views.size() * sizeof(shared::RSMLayerView));
@@ -293,6 +301,9 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
             }
         }
         bindStorageBuffer(shared::kBindingOcclusionTargets, mOcclusionTargets);
+        bindStorageBuffer(shared::kBindingCacheRadiance, mCacheRadiance);
+        mFinalizePass.program().set("uLayers", layers);
+        mFinalizePass.program().set("uSize", size);
         mFinalizePass.program().set("uCacheCount", cacheCount);
         mFinalizePass.program().set("uChunks", chunks);
         mFinalizePass.program().set("uOcclusionCells", mParams.occlusionCells ? 1 : 0);
@@ -304,6 +315,7 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     } else if (mParams.occlusion) {
         gl::PassTimer::Scope scope(frame.timer, "occlusion");
         mOcclusionPass.program().set("uCacheCount", cacheCount);
+        mOcclusionPass.program().set("uOccluderLight", mParams.occluderLight ? 1 : 0);
         mOcclusionPass.dispatch(perCacheInvocations(cacheCount), NextRead::StorageBuffer);
     }
     {

@@ -82,6 +82,7 @@ struct LightSkinParams {
     bool occlusion = true;        // double projection (section 3)
     bool tracedOcclusion = false; // visibility per cache by Embree rays (the reference; not in the paper)
     bool occlusionCells = true;   // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
+    bool occluderLight = true;    // ... an occluder's own reflected light is not removed (not in the paper)
     bool exactArea = false;       // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
     std::uint32_t seed = 1;
     bool animateSeed = false;
@@ -147,6 +148,7 @@ private:
     gl::Buffer mProxies;          // ProxyLight[caches]
     gl::Buffer mProxySums;        // vec4[caches x chunks x kProxySumVec4s]
     gl::Buffer mOcclusionTargets; // OcclusionTarget[caches x kOcclusionCells]
+    gl::Buffer mCacheRadiance;    // float[caches]: each cache's own reflected radiance (luminance), the finalize pass
     gl::Buffer mViewSamples;      // ViewSample[N_VS]
     gl::Buffer mLayerViews;       // RSMLayerView[layers]
     gl::Texture mImportance;      // R32F, (rsm.size x layers) x rsm.size

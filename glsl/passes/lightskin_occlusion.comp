@@ -20,8 +20,10 @@ layout(local_size_x = kLightSkinGroupSize) in;
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
 layout(std430, binding = kBindingProxyLights) buffer Proxies { ProxyLight proxies[]; };
 layout(std430, binding = kBindingOcclusionTargets) readonly buffer Targets { OcclusionTarget targets[]; };
+layout(std430, binding = kBindingCacheRadiance) readonly buffer Radiance { float cacheRadiance[]; };
 
 uniform int uCacheCount;
+uniform int uOccluderLight; // 1: an occluder's own reflected light is not removed (lightskin.occluderLight)
 
 shared float sOverlap[kOcclusionCells][kLightSkinGroupSize];
 
@@ -41,6 +43,7 @@ void main()
     vec3 squares[kOcclusionCells]; // xy centre on the unit disk, z area
     vec2 depths[kOcclusionCells];  // the light's distance: mean and spread [m] (spread 0: a step)
     float far2[kOcclusionCells];   // occluders count nearer than this [m^2]
+    float perLight[kOcclusionCells]; // the cell's square area over its light (irradiance luminance)
     for (int g = 0; g < kOcclusionCells; ++g) {
         OcclusionTarget target = targets[cache * kOcclusionCells + g];
         centres[g] = target.centre.xyz;
@@ -49,6 +52,7 @@ void main()
         depths[g] = target.depthShares.xy;
         float far = depths[g].x + 3.0 * depths[g].y;
         far2[g] = shares[g] != vec2(0.0) ? far * far : 0.0; // empty: no occluder
+        perLight[g] = shares[g].x > 0.0 ? squares[g].z / shares[g].x : 0.0;
     }
 
     float overlap[kOcclusionCells];
@@ -79,8 +83,17 @@ void main()
         }
         if (!anyCandidate) continue;
         vec3 square = projectDiskToUnitDisk(op - cp, on, o.positionArea.w, diskFrame);
+        // With lightskin.occluderLight (not in the paper): an occluder the light reaches reflects
+        // light of its own towards the cache (when its front faces it), which is among the cell's
+        // VALs and not behind it. Its radiance L over the overlap (the unit disk's area is the
+        // projected solid angle) is irradiance L a, the share L a / E of the cell's light E; the
+        // occluder removes its share of what lies behind it, less that, never less than nothing
+        // (each occluder on its own: one lit occluder gives back only what it took).
+        float ownRadiance = uOccluderLight != 0 && cacheSide > 0.0 ? cacheRadiance[j] : 0.0;
         for (int g = 0; g < kOcclusionCells; ++g)
-            if (candidates[g]) overlap[g] += occlusionBehind(distance, depths[g]) * squareOverlap(squares[g], square);
+            if (candidates[g])
+                overlap[g] += squareOverlap(squares[g], square) *
+                              max(occlusionBehind(distance, depths[g]) - ownRadiance * perLight[g], 0.0);
     }
     for (int g = 0; g < kOcclusionCells; ++g) sOverlap[g][lane] = overlap[g];
     barrier();

@@ -49,6 +49,8 @@ uniform float uEpsilon;      // epsilon_p of eq. (6)
 uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too (MATH.md 9.3 option)
 uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
 
+#include "../lib/lightskin_val.glsl"
+
 // The sums per proxy and per occlusion cell (lightskin.h, occlusionCell) in lightskin_gpu.h's order.
 shared float sSums[kProxySumCount][kLightSkinGroupSize];
 
@@ -81,35 +83,10 @@ void main()
             texel = ivec3(d.x % uSize, d.y, d.x / uSize);
             selection = float(uSelectionCount) * d.probability;
         }
-        vec4 normalCoverage = texelFetch(uSource[kRSMNormal], texel, 0);
-        if (normalCoverage.w == 0.0) continue;
-        vec4 fluxTexel = texelFetch(uSource[kRSMFlux], texel, 0);
-        vec4 diffuseTexel = texelFetch(uSource[kRSMDiffuse], texel, 0);
-        vec3 flux = fluxTexel.rgb * diffuseTexel.rgb;
-        if (flux == vec3(0.0)) continue;
-        vec3 xl = texelFetch(uSource[kRSMPosition], texel, 0).xyz;
-        // The VAL's cosines as the one-bounce path tracer has them (not in the paper; issue "Every
-        // light type in the RSM techniques", part 2; glsl/shared/sg.h, vplRadiance, derives them):
-        // the RSM's flux crossed the texel's triangle, of geometric normal n_g (level 0: flux.w,
-        // diffuse.w), so the surface's irradiance takes cos_s(in) / cos_g(in) of it, n_s the shading
-        // normal; the footprint's exit cosine and tilt are n_g's. Without normal maps n_s = n_g.
-        vec3 ns = normalize(normalCoverage.xyz);
-        vec3 nl = octDecode(vec2(fluxTexel.w, diffuseTexel.w));
-        RSMLayerView layer = views[texel.z];
-        bool orthographic = layer.info.y != 0.0;
-        vec4 light = layerLights[texel.z].positionKind;
-        vec3 ray = orthographic ? normalize(light.xyz) : normalize(xl - light.xyz);
-        float cosGeometricIn = dot(nl, -ray);
-        if (!(cosGeometricIn > 1e-3)) continue;
-        flux *= max(dot(ns, -ray), 0.0) / cosGeometricIn;
-        if (flux == vec3(0.0)) continue;
-        float depth = dot(layer.depthRow, vec4(xl, 1.0));
-        float area = lightskinValArea(depth, layer.info.x, orthographic);
-        if (uExactArea != 0) {
-            // MATH.md 9.1: the texel's ray from the light, its cosine to the view axis and to the surface.
-            float cosAxis = orthographic ? 1.0 : depth / max(distance(xl, light.xyz), 1e-6);
-            area = lightskinValAreaTilted(area, cosAxis, cosGeometricIn);
-        }
+        LightSkinVAL val = readLightSkinVAL(texel);
+        if (!val.valid) continue;
+        vec3 xl = val.position, nl = val.normal, flux = val.flux;
+        float area = uExactArea != 0 ? val.areaTilted : val.area;
         vec3 v = xl - cp;
         float d2 = dot(v, v);
         if (d2 <= 0.0 || area <= 0.0) continue;

@@ -11,6 +11,9 @@
 #include "../shared/bindings.h"
 #include "../shared/lightskin.h"
 #include "../shared/lightskin_gpu.h"
+#include "../shared/normals.h"
+#include "../shared/rsm.h"
+#include "../shared/tonemap.h"
 #include "../lib/frame.glsl"
 
 layout(local_size_x = 64) in;
@@ -19,10 +22,40 @@ layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightC
 layout(std430, binding = kBindingProxySums) readonly buffer Sums { vec4 partialSums[]; };
 layout(std430, binding = kBindingProxyLights) writeonly buffer Proxies { ProxyLight proxies[]; };
 layout(std430, binding = kBindingOcclusionTargets) writeonly buffer Targets { OcclusionTarget targets[]; };
+layout(std430, binding = kBindingCacheRadiance) writeonly buffer Radiance { float cacheRadiance[]; };
+layout(binding = kUnitRSMSource) uniform sampler2DArray uSource[kRSMAttachmentCount];
+layout(std430, binding = kBindingRSMLayerViews) readonly buffer Views { RSMLayerView views[]; };
+layout(std430, binding = kBindingRSMLayers) readonly buffer Layers { RSMLayerLight layerLights[]; };
+#include "../lib/lightskin_val.glsl"
 
 uniform int uCacheCount;
 uniform int uChunks;
 uniform int uOcclusionCells; // 1: a target per occlusion cell; 0: the paper's, the proxies' spheres
+uniform int uLayers;         // RSM layers
+uniform int uSize;           // RSM edge [texels]
+
+// The light the cache's own surface reflects, as luminance of its radiance [W/(m^2 sr)] (not in the
+// paper; lightskin_occlusion.comp's occluder light): the cache projected into each RSM layer; where
+// the texel there shows the cache's own surface (facing its way, the cache within a texel's size of
+// its plane and two footprints of it: not a surface that shadows the cache, nor the other face of a
+// thin wall), that texel's VAL exitance over pi. 0 where no layer sees the cache lit.
+float ownRadiance(vec3 cp, vec3 cn)
+{
+    for (int layer = 0; layer < uLayers; ++layer) {
+        RSMLayerView view = views[layer];
+        vec4 clip = mat4(view.clip0, view.clip1, view.clip2, view.clip3) * vec4(cp, 1.0);
+        if (!(clip.w > 0.0)) continue;
+        vec3 ndc = clip.xyz / clip.w;
+        if (any(greaterThan(abs(ndc), vec3(1.0)))) continue;
+        ivec2 xy = clamp(ivec2((ndc.xy * 0.5 + 0.5) * float(uSize)), ivec2(0), ivec2(uSize - 1));
+        LightSkinVAL val = readLightSkinVAL(ivec3(xy, layer));
+        if (!val.valid || dot(val.normal, cn) < 0.5 || abs(dot(val.normal, cp - val.position)) > sqrt(val.area) ||
+            distance(val.position, cp) > 2.0 * sqrt(val.areaTilted))
+            continue;
+        return luminanceRec709(val.flux) / (kPi * val.areaTilted);
+    }
+    return 0.0;
+}
 
 void main()
 {
@@ -78,6 +111,8 @@ void main()
         }
     }
     proxies[cache] = proxy;
+    float own = uOcclusionCells != 0 ? ownRadiance(cp, cn) : 0.0;
+    cacheRadiance[cache] = isnan(own) || isinf(own) ? 0.0 : own;
 
     mat3 diskFrame = occlusionFrame(cn);
     for (int g = 0; g < kOcclusionCells; ++g) {

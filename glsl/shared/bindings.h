@@ -45,6 +45,7 @@ VPLGI_CONST int kBindingRSMLayerViews = 22;      // SSBO RSMLayerView[]: each RS
 VPLGI_CONST int kBindingProxySums = 23;          // SSBO vec4[]: the proxy pass's sums per (cache, chunk of VALs)
 VPLGI_CONST int kBindingOcclusionTargets = 24;   // SSBO OcclusionTarget[]: kOcclusionCells per cache
 VPLGI_CONST int kBindingLightCacheReach = 25;    // SSBO uvec4[]: each cache's reach (glsl/shared/light_cache_lookup.h)
+VPLGI_CONST int kBindingCacheRadiance = 26;      // SSBO float[]: each cache's own reflected radiance (luminance)
 
 // Image units (glBindImageTexture), a namespace separate from texture units.
 VPLGI_CONST int kImageImportance = 0; // r32f importance map read by the importance sampler

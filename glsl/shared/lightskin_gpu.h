@@ -46,6 +46,10 @@ struct RSMLayerView {
     vec4 depthRow; // dot(depthRow, vec4(x, 1)) = the depth of world point x along the light's view axis [m]
     vec4 info;     // x texel factor 4/(P00 P11 W H) (on-axis solid angle [sr] or, orthographic, area [m^2]),
                    // y 1 for an orthographic (directional) layer, zw unused
+    vec4 clip0;    // the layer's clipFromWorld, column by column (a cache's own texel, the finalize pass)
+    vec4 clip1;
+    vec4 clip2;
+    vec4 clip3;
 };
 
 // The proxy pass's sums per (cache, chunk) (lightskin_proxy.comp), in this order: 10 per proxy
@@ -69,7 +73,7 @@ static_assert(sizeof(vplgi::shared::ProxyLight) == 64, "ProxyLight must match st
 static_assert(sizeof(vplgi::shared::OcclusionTarget) == 48, "OcclusionTarget must match std430");
 static_assert(vplgi::shared::kProxySumCount % 4 == 0, "the proxy sums are read as whole vec4s");
 static_assert(sizeof(vplgi::shared::ViewSample) == 32, "ViewSample must match std430");
-static_assert(sizeof(vplgi::shared::RSMLayerView) == 32, "RSMLayerView must match std430");
+static_assert(sizeof(vplgi::shared::RSMLayerView) == 96, "RSMLayerView must match std430");
 #endif
 
 #endif // VPLGI_SHARED_LIGHTSKIN_GPU_H

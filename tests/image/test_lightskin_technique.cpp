@@ -35,7 +35,7 @@ Scene blockedWallScene(bool blocker)
     scene.name = blocker ? "blocked wall" : "open wall";
     const int grey = test::addTestMaterial(scene, "grey", glm::vec3(0.7f));
     test::addTestQuad(scene, grey, {-2.0f, 0.0f, 2.0f}, {5.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -4.0f}); // floor, +y
-    test::addTestQuad(scene, grey, {3.0f, 0.0f, -2.0f}, {0.0f, 0.0f, 4.0f}, {0.0f, 3.0f, 0.0f}); // wall, -x
+    test::addTestQuad(scene, grey, {3.0f, 0.0f, -2.0f}, {0.0f, 0.0f, 4.0f}, {0.0f, 3.0f, 0.0f});  // wall, -x
     if (blocker) {
         test::addTestQuad(scene, grey, {1.5f, 0.0f, -3.0f}, {0.0f, 2.5f, 0.0f}, {0.0f, 0.0f, 6.0f}); // -x face
         test::addTestQuad(scene, grey, {1.5f, 0.0f, -3.0f}, {0.0f, 0.0f, 6.0f}, {0.0f, 2.5f, 0.0f}); // +x face
@@ -78,8 +78,9 @@ TEST_CASE("lightskin: the selected VALs converge to all VALs as N grows, all VAL
     test::saveTestImage("lightskin_full_corner", full);
     MEASURED("unoccluded corner (48x36, RSM 32^2, d_eps 0.25 m): relative L1 of lightskin against lightskin-full at "
              "N = 64/1024/16384: "
-             << toFull[0] << " " << toFull[1] << " " << toFull[2] << "; lightskin-full against the one-bounce path tracer "
-             << fullError << " (mean " << 100.0 * fullBias << "%)");
+             << toFull[0] << " " << toFull[1] << " " << toFull[2]
+             << "; lightskin-full against the one-bounce path tracer " << fullError << " (mean " << 100.0 * fullBias
+             << "%)");
     // Eq. (14) is unbiased: more draws, closer to all VALs (a Monte Carlo error falls as 1/sqrt(N)).
     CHECK(toFull[1] < toFull[0]);
     CHECK(toFull[2] < toFull[1]);
@@ -97,20 +98,22 @@ TEST_CASE("lightskin: the double projection removes the light a wall blocks and 
     test::ensureGLContext();
     auto mean = [&](bool blocker, bool occlusion) {
         const Scene scene = blockedWallScene(blocker);
-        std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
-            scene, "lightskin-full",
-            {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.4"}, {"lightskin.occlusion", occlusion ? "true" : "false"}});
+        std::unique_ptr<Renderer> renderer =
+            test::makeTechniqueRenderer(scene, "lightskin-full",
+                                        {{"rsm.size", "32"},
+                                         {"lightskin.cacheDistance", "0.4"},
+                                         {"lightskin.occlusion", occlusion ? "true" : "false"}});
         return meanLuminance(test::renderIndirect(*renderer, scene.cameras[0], 32, 24));
     };
     const double blockedOn = mean(true, true), blockedOff = mean(true, false);
     const double openOn = mean(false, true), openOff = mean(false, false);
-    MEASURED("wall seen past a blocker: indirect with occlusion / without " << blockedOn / blockedOff
-             << "; without the blocker: " << openOn / openOff << " (means " << blockedOn << " " << blockedOff << " "
-             << openOn << " " << openOff << ")");
+    MEASURED("wall seen past a blocker: indirect with occlusion / without "
+             << blockedOn / blockedOff << "; without the blocker: " << openOn / openOff << " (means " << blockedOn
+             << " " << blockedOff << " " << openOn << " " << openOff << ")");
     REQUIRE(openOff > 0.0);
     REQUIRE(blockedOff > 0.0); // without occlusion the caches see the lit floor through the blocker
-    // Measured exactly 0 with the blocker and 0.978 without it (2.2% falsely occluded, by the
-    // receiving wall's own neighbours near the horizon). With the blocker, 1e-3 of the unblocked
+    // Measured exactly 0 with the blocker and 1.000 without it (0.978, 2.2% falsely occluded, before
+    // the caches' reach and lightskin.occluderLight). With the blocker, 1e-3 of the unblocked
     // light is far above float noise and far below any real leak (the old bound, 10%, let one
     // through); without it the bound allows about 3x the false occlusion.
     CHECK(blockedOn < 1e-3 * blockedOff);
@@ -146,11 +149,11 @@ TEST_CASE("lightskin: occlusion acts on a wall that a board shades from a broad 
     CHECK(paper == Approx(off).epsilon(1e-3));
     CHECK(paper > 1.6 * reference);
     // With each cache's visibility traced, the caches and their interpolation are close to the path
-    // tracer (measured -3.6%; bound about 3x).
+    // tracer (measured -4.0%; bound about 2.5x).
     CHECK(std::abs(traced / reference - 1.0) < 0.1);
-    // The cells' double projection against the traced visibility: measured 0.846 (it blocks a
+    // The cells' double projection against the traced visibility: measured 0.842 (it blocks a
     // little too much); the bound is about 2x that error. The last check is the issue's acceptance
-    // line (within 20% of the path tracer; measured -18.5%), not a tolerance: the path tracer's
+    // line (within 20% of the path tracer; measured -19.2%), not a tolerance: the path tracer's
     // noise at 1024 spp moves the mean by well under 1%, the rest is deterministic.
     CHECK(std::abs(cells / traced - 1.0) < 0.3);
     CHECK(std::abs(cells / reference - 1.0) < 0.2);
@@ -161,7 +164,8 @@ TEST_CASE("lightskin and lightskin-full images are bit-identical over runs", "[l
     test::ensureGLContext();
     const Scene scene = test::cornerScene(1.0f, 0.3f); // glossy: the glossy proxies too
     for (const std::string technique : {"lightskin", "lightskin-full"})
-        test::checkTechniqueBitIdentical(scene, technique, {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.3"}}, 32, 24);
+        test::checkTechniqueBitIdentical(scene, technique, {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.3"}}, 32,
+                                         24);
 }
 
 TEST_CASE("lightskin: a scene without an RSM light renders no indirect light", "[lightskin][image]")
