@@ -1,13 +1,36 @@
 #!/usr/bin/env python3
 """LightSkin + BRSM Fig. 3 from `vplgi compare` runs (scripts/lightskin-experiments): the mean
 absolute difference between the selected-VAL and the all-VAL indirect images after compare's
-fixed-exposure tone map, per RSM size, one line per selection. Prints a markdown table and writes
-an SVG plot.
+fixed-exposure tone map, per RSM size, one line per selection. A selection run over several seeds
+(techniques that differ only in `lightskin.seed=S`) is one line: the mean over the seeds with its
+95% t-interval. Prints a markdown table and writes an SVG plot of the means.
 Usage: lightskin_fig3.py OUT.svg RUN_DIR... (each RUN_DIR holds metrics.csv and metrics.json of one RSM size)"""
 import csv
 import json
+import math
 import os
+import re
+import statistics
 import sys
+
+# Two-sided 95% Student t quantiles by degrees of freedom (1..30); normal beyond.
+T95 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
+       2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042]
+
+
+def config_of(technique):
+    """The technique without its seed key: the line a run belongs to."""
+    name = re.sub(r";?lightskin\.seed=\d+", "", technique)
+    return name.replace("[;", "[").replace("[]", "")
+
+
+def interval(values):
+    """Mean and 95% t-interval half-width (0 for one value)."""
+    mean = statistics.mean(values)
+    if len(values) < 2:
+        return mean, 0.0
+    t = T95[len(values) - 2] if len(values) - 1 <= len(T95) else 1.96
+    return mean, t * statistics.stdev(values) / math.sqrt(len(values))
 
 
 def load(run_dir):
@@ -29,7 +52,12 @@ def main():
         sys.exit(__doc__)
     out = sys.argv[1]
     runs = sorted(load(d) for d in sys.argv[2:])
-    names = [r["technique"] for r in runs[0][1] if r["technique"] != "lightskin-full"]
+    names = []
+    for r in runs[0][1]:
+        if r["technique"] != "lightskin-full" and config_of(r["technique"]) not in names:
+            names.append(config_of(r["technique"]))
+    seeds = sum(1 for r in runs[0][1] if config_of(r["technique"]) == names[0])
+    print(f"seeds per selection: {seeds} (mean [95% t-interval])")
     print("| RSM | " + " | ".join(names) + " | lightskin-full vs path tracer |")
     print("|---|" + "---|" * (len(names) + 1))
     series = {n: [] for n in names}
@@ -37,9 +65,10 @@ def main():
         by_name = {r["technique"]: r for r in rows}
         cells = []
         for n in names:
-            value = float(by_name[n]["against_mean_abs_tonemapped"])
-            series[n].append((size, value))
-            cells.append(f"{value:.5f}")
+            values = [float(r["against_mean_abs_tonemapped"]) for r in rows if config_of(r["technique"]) == n]
+            mean, half = interval(values)
+            series[n].append((size, mean))
+            cells.append(f"{mean:.5f} [{mean - half:.5f}, {mean + half:.5f}]" if half > 0 else f"{mean:.5f}")
         full = by_name["lightskin-full"]
         cells.append(f"{float(full['mean_abs_tonemapped']):.4f} (bias {100 * float(full['mean_luminance_bias']):+.1f}%)"
                      if full["mean_abs_tonemapped"] else "-")
