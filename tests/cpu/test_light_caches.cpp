@@ -432,6 +432,46 @@ TEST_CASE("light caches: the shared lookup finds the k nearest facing caches as 
     compare(points.positions, points.normals, 16);
 }
 
+TEST_CASE("light caches: the reach is exact for a straight wall and a concave corner", "[lightskin][caches]")
+{
+    // Reach records made from the closed form (a wall x = a, and a corner x = a, y = b, in the cache's
+    // tangent frame: ray i stops at min(a / cos, b / sin) where positive), then every point of a grid
+    // over the search disk: lightCacheReaches must accept exactly the points on the cache's side, up
+    // to the lift plus two quantization steps (1/255 of the radius each). Measured 0 wrong of about
+    // 30,000 points each; tried: with the chord between two hits alone (no walls through the outer
+    // neighbours) the corner has 20 points wrong.
+    const float radius = 1.0f, a = 0.3f, b = 0.45f;
+    const glm::vec3 normal = glm::normalize(glm::vec3(0.2f, 0.3f, 0.9f));
+    const glm::mat3 frame = shared::lightViewBasis(normal);
+    for (const bool corner : {false, true}) {
+        glm::uvec4 reach(0u);
+        for (int i = 0; i <= shared::kLightCacheReachAzimuths; ++i) {
+            const float azimuth = 6.28318531f * static_cast<float>(i) / shared::kLightCacheReachAzimuths;
+            float t = radius;
+            if (i < shared::kLightCacheReachAzimuths) {
+                if (std::cos(azimuth) > 0.0f) t = std::min(t, a / std::cos(azimuth));
+                if (corner && std::sin(azimuth) > 0.0f) t = std::min(t, b / std::sin(azimuth));
+            }
+            reach[i / 4] |= static_cast<std::uint32_t>(std::floor(t / radius * 255.0f)) << (8 * (i % 4));
+        }
+        const float tolerance = shared::kLightCacheReachLift * radius + 2.0f * radius / 255.0f;
+        int wrong = 0, checked = 0;
+        for (int iy = -100; iy <= 100; ++iy)
+            for (int ix = -100; ix <= 100; ++ix) {
+                const glm::vec2 q(0.01f * static_cast<float>(ix), 0.01f * static_cast<float>(iy));
+                if (glm::length(q) >= radius) continue;
+                const float beyond = std::max(q.x - a, corner ? q.y - b : -1.0f); // > 0: behind a wall
+                if (std::abs(beyond) < tolerance) continue;
+                ++checked;
+                const bool accepted = shared::lightCacheReaches(reach, normal, frame[0] * q.x + frame[1] * q.y, radius);
+                wrong += accepted == (beyond < 0.0f) ? 0 : 1;
+            }
+        INFO((corner ? "corner" : "wall") << ": " << wrong << " of " << checked << " points on the wrong side");
+        CHECK(checked > 25000);
+        CHECK(wrong == 0);
+    }
+}
+
 TEST_CASE("light caches: with their reach, no cache lights the other side of a wall", "[lightskin][caches]")
 {
     // `sealed`: two rooms side by side behind a 10 cm wall, their floors (and ceilings) in one plane
