@@ -302,6 +302,10 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         }
         bindStorageBuffer(shared::kBindingOcclusionTargets, mOcclusionTargets);
         bindStorageBuffer(shared::kBindingCacheRadiance, mCacheRadiance);
+        // Each cache's own radiance only where the double projection's cells will read it.
+        const bool ownRadiance =
+            mParams.occlusion && !mParams.tracedOcclusion && mParams.occlusionCells && mParams.occluderLight;
+        mFinalizePass.program().set("uOwnRadiance", ownRadiance ? 1 : 0);
         mFinalizePass.program().set("uLayers", layers);
         mFinalizePass.program().set("uSize", size);
         mFinalizePass.program().set("uCacheCount", cacheCount);

@@ -31,6 +31,7 @@ layout(std430, binding = kBindingRSMLayers) readonly buffer Layers { RSMLayerLig
 uniform int uCacheCount;
 uniform int uChunks;
 uniform int uOcclusionCells; // 1: a target per occlusion cell; 0: the paper's, the proxies' spheres
+uniform int uOwnRadiance;    // 1: the occlusion pass reads each cache's own radiance (lightskin.occluderLight)
 uniform int uLayers;         // RSM layers
 uniform int uSize;           // RSM edge [texels]
 
@@ -111,7 +112,7 @@ void main()
         }
     }
     proxies[cache] = proxy;
-    float own = uOcclusionCells != 0 ? ownRadiance(cp, cn) : 0.0;
+    float own = uOwnRadiance != 0 ? ownRadiance(cp, cn) : 0.0;
     cacheRadiance[cache] = isnan(own) || isinf(own) ? 0.0 : own;
 
     mat3 diskFrame = occlusionFrame(cn);

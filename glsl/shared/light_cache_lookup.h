@@ -124,6 +124,21 @@ VPLGI_FUNC float lightCacheReachToLine(vec2 u, vec2 p, vec2 q, float radius)
     return t > 0.0f ? min(t, radius) : radius;
 }
 
+// True when reach ray i (i < 15) hit something within the radius.
+VPLGI_FUNC bool lightCacheReachHit(uvec4 reach, int i)
+{
+    return lightCacheReachFraction(reach, i) < 1.0f;
+}
+
+// The distance along u to the wall through the hits of rays i and j (lightCacheReachToLine), or
+// `radius` when either of them hit nothing.
+VPLGI_FUNC float lightCacheReachToWall(uvec4 reach, int i, int j, vec2 u, float radius)
+{
+    if (!lightCacheReachHit(reach, i) || !lightCacheReachHit(reach, j)) return radius;
+    return lightCacheReachToLine(u, lightCacheReachPoint(reach, i, radius), lightCacheReachPoint(reach, j, radius),
+                                 radius);
+}
+
 // True when the point at `offset` (x - c) from a cache with normal `normal` lies within the cache's
 // reach (search radius `radius`): not behind the cache's own surface, not beyond what lies above the
 // cache, and no further along the tangent plane than the cache sees in that direction. Between two
@@ -148,34 +163,24 @@ VPLGI_FUNC bool lightCacheReaches(uvec4 reach, vec3 normal, vec3 offset, float r
     float s = (azimuth < 0.0f ? azimuth + 6.28318531f : azimuth) * (float(kLightCacheReachAzimuths) / 6.28318531f);
     int n = kLightCacheReachAzimuths;
     int i0 = min(int(floor(s)), n - 1);
-    int i1 = (i0 + 1) % n;
-    bool hit0 = lightCacheReachFraction(reach, i0) < 1.0f, hit1 = lightCacheReachFraction(reach, i1) < 1.0f;
+    int i1 = (i0 + 1) % n, before = (i0 + n - 1) % n, after = (i1 + 1) % n;
+    bool hit0 = lightCacheReachHit(reach, i0), hit1 = lightCacheReachHit(reach, i1);
     float reachHere = radius;
     if (hit0 && hit1) {
         // The chord through the two hits, or the nearer of the walls through their outer neighbours
         // where that lies beyond the chord: a concave corner between the rays (the chord would cut
         // it off; the room is the intersection of its walls' half-planes).
-        int before = (i0 + n - 1) % n, i2 = (i1 + 1) % n;
-        vec2 p0 = lightCacheReachPoint(reach, i0, radius), p1 = lightCacheReachPoint(reach, i1, radius);
-        float wall0 = lightCacheReachFraction(reach, before) < 1.0f
-                          ? lightCacheReachToLine(u, lightCacheReachPoint(reach, before, radius), p0, radius)
-                          : radius;
-        float wall1 = lightCacheReachFraction(reach, i2) < 1.0f
-                          ? lightCacheReachToLine(u, p1, lightCacheReachPoint(reach, i2, radius), radius)
-                          : radius;
-        reachHere = max(lightCacheReachToLine(u, p0, p1, radius), min(wall0, wall1));
+        reachHere = max(lightCacheReachToWall(reach, i0, i1, u, radius),
+                        min(lightCacheReachToWall(reach, before, i0, u, radius),
+                            lightCacheReachToWall(reach, i1, after, u, radius)));
     } else if (hit1) {
-        int i2 = (i1 + 1) % n;
-        if (lightCacheReachFraction(reach, i2) < 1.0f)
-            reachHere = lightCacheReachToLine(u, lightCacheReachPoint(reach, i1, radius),
-                                              lightCacheReachPoint(reach, i2, radius), radius);
+        if (lightCacheReachHit(reach, after))
+            reachHere = lightCacheReachToWall(reach, i1, after, u, radius);
         else if (s - float(i0) > 0.5f)
             reachHere = lightCacheReachFraction(reach, i1) * radius;
     } else if (hit0) {
-        int before = (i0 + n - 1) % n;
-        if (lightCacheReachFraction(reach, before) < 1.0f)
-            reachHere = lightCacheReachToLine(u, lightCacheReachPoint(reach, before, radius),
-                                              lightCacheReachPoint(reach, i0, radius), radius);
+        if (lightCacheReachHit(reach, before))
+            reachHere = lightCacheReachToWall(reach, before, i0, u, radius);
         else if (s - float(i0) <= 0.5f)
             reachHere = lightCacheReachFraction(reach, i0) * radius;
     }

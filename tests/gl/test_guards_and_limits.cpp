@@ -147,11 +147,13 @@ TEST_CASE("lightskin: a proxy whose sums are not finite passes on no light, the 
     gl::Buffer proxyBuffer("guard test proxies", 2 * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
     gl::Buffer targetBuffer("guard test targets",
                             2 * shared::kOcclusionCells * static_cast<GLsizeiptr>(sizeof(shared::OcclusionTarget)));
+    gl::Buffer radianceBuffer("guard test cache radiance", 2 * static_cast<GLsizeiptr>(sizeof(float)));
     const CameraFrame frame(glm::vec3(0.0f, 5.0f, 5.0f));
     bindStorageBuffer(shared::kBindingLightCaches, cacheBuffer);
     bindStorageBuffer(shared::kBindingProxySums, sumBuffer);
     bindStorageBuffer(shared::kBindingProxyLights, proxyBuffer);
     bindStorageBuffer(shared::kBindingOcclusionTargets, targetBuffer);
+    bindStorageBuffer(shared::kBindingCacheRadiance, radianceBuffer);
     ComputePass finalize(test::shaders(), "LightSkin proxies", "passes/lightskin_proxy_finalize.comp");
     finalize.program().set("uCacheCount", 2);
     finalize.program().set("uChunks", 1);
