@@ -28,6 +28,26 @@ gl::Texture makeTexture(const std::string& name, int width, int height, bool srg
 
 } // namespace
 
+SceneProgram::SceneProgram(const gl::ShaderLoader& shaders, std::string name, std::vector<gl::ShaderStage> stages,
+                           std::vector<std::string> defines)
+    : mShaders(shaders), mName(std::move(name)), mStages(std::move(stages)), mDefines(std::move(defines)),
+      mOpaque(mShaders.load(mName, mStages, mDefines))
+{
+}
+
+const gl::Program& SceneProgram::masked() const
+{
+    if (!mMasked) {
+        std::vector<std::string> defines = mDefines;
+        defines.push_back("VPLGI_ALPHA_MASK");
+        mMasked = mShaders.load(mName + " (alpha mask)", mStages, defines);
+        for (const auto& [uniform, setter] : mPending)
+            setter(mMasked, uniform.c_str());
+        mPending.clear();
+    }
+    return mMasked;
+}
+
 GpuScene::GpuScene(const Scene& scene) : mScene(scene)
 {
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
@@ -112,16 +132,30 @@ void GpuScene::bindMaterial(const gl::Program& program, const Material& m, bool 
                        m.normalTexture.valid() && hasTangents ? 1 : 0, m.doubleSided ? 1 : 0, 0, 0);
 }
 
-void GpuScene::draw(const gl::Program& program, Bind bind, GLsizei instanceCount) const
+void GpuScene::draw(const SceneProgram& programs, Bind bind, GLsizei instanceCount) const
 {
+    GLuint bound = 0;
     for (const Instance& instance : mScene.instances) {
         const Mesh& mesh = mScene.meshes[instance.mesh];
         const MeshBuffers& buffers = mMeshes[instance.mesh];
         if (buffers.indexCount == 0) continue;
+        const Material& material = mScene.materials[mesh.material];
+        const gl::Program& program = material.isMasked() ? programs.masked() : programs.opaque();
+        if (program.id() != bound) {
+            glUseProgram(program.id());
+            bound = program.id();
+        }
         program.set("uWorldFromObject", instance.worldFromObject);
+        if (material.isMasked()) {
+            // glsl/lib/alpha_mask.glsl: the base colour texture's alpha (level 0) times the factor's.
+            glBindTextureUnit(shared::kUnitBaseColor, material.baseColorTexture.valid()
+                                                          ? imageTexture(material.baseColorTexture.image, true).id()
+                                                          : mWhite.id());
+            glBindSampler(shared::kUnitBaseColor, mMaterialSampler.id());
+            program.set("uAlphaMask", glm::vec2(material.alphaCutoff, material.baseColor.a));
+        }
         if (bind == Bind::GeometryAndMaterial) {
             program.set("uNormalFromObject", glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject))));
-            const Material& material = mScene.materials[mesh.material];
             bindMaterial(program, material, mesh.hasTangents);
             // glTF: single-sided materials are back-face culled.
             if (material.doubleSided) glDisable(GL_CULL_FACE);
@@ -132,6 +166,7 @@ void GpuScene::draw(const gl::Program& program, Bind bind, GLsizei instanceCount
     }
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);
+    glUseProgram(0);
 }
 
 } // namespace vplgi

@@ -800,6 +800,9 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
                                       " m would cut an instance into about " + std::to_string(pieces) +
                                       " pieces (at most " + std::to_string(kMaxPieces) + "); use a larger distance");
     const UntexturedMaterials materials = computeUntexturedMaterials(scene);
+    std::vector<float> coverage; // per material (alphaCoverage: 1 unless alpha-masked)
+    for (const Material& m : scene.materials)
+        coverage.push_back(alphaCoverage(scene, m));
     const int total = static_cast<int>(scene.instances.size());
     if (progress) progress("lightskin caches", 0, total);
     set.instanceStart.push_back(0);
@@ -826,11 +829,14 @@ LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& 
         const glm::vec3 base = materials.baseColor[material];
         const float metallic = materials.metallic[material];
         const float specular = scene.materials[material].specular;
+        // Alpha masks (not in the paper): a cache stands for the part of its surface the mask keeps,
+        // taken as the material's mean coverage, as its albedo is the material's mean (the untextured
+        // table). A cache's exact cut-out would need the texture over each piece.
         for (const CacheGeometry& g : geometry) {
             LightCache c;
             c.position = g.position;
             c.normal = g.normal;
-            c.area = g.area;
+            c.area = g.area * coverage[material];
             c.roughness = materials.roughness[material];
             c.metallic = metallic;
             c.diffuse = (1.0f - metallic) * base;

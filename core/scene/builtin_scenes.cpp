@@ -1250,12 +1250,86 @@ Scene makeBoard()
     return scene;
 }
 
+// ---------------------------------------------------------------------------------------------
+// cutout
+
+// The leaf of the cutout scene: one colour, alpha 255 inside a lens (the intersection of two discs,
+// its axis along the texture's diagonal) less three round bites, alpha 0 elsewhere; 31% of the
+// texels are kept (tests/cpu/test_alpha_masks.cpp measures it).
+Image makeLeafImage(int size)
+{
+    Image image;
+    image.name = "leaf";
+    image.width = image.height = size;
+    image.rgba.resize(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 4);
+    const glm::vec2 axis = glm::normalize(glm::vec2(1.0f, 1.0f)), across(-axis.y, axis.x);
+    const glm::vec2 centre(0.5f);
+    const glm::vec2 bites[3] = {{0.40f, 0.44f}, {0.63f, 0.60f}, {0.50f, 0.36f}};
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const glm::vec2 uv((x + 0.5f) / size, (y + 0.5f) / size);
+            // Lens: within 0.8 of two centres 0.58 either side of the axis (0.44 wide, tips 1.1 apart).
+            const bool lens = glm::distance(uv, centre + 0.58f * across) < 0.8f &&
+                              glm::distance(uv, centre - 0.58f * across) < 0.8f;
+            bool bitten = false;
+            for (const glm::vec2& b : bites) bitten = bitten || glm::distance(uv, b) < 0.05f;
+            std::uint8_t* p = &image.rgba[(static_cast<std::size_t>(y) * size + x) * 4];
+            p[0] = 200;
+            p[1] = 190;
+            p[2] = 160;
+            p[3] = lens && !bitten ? 255 : 0;
+        }
+    return image;
+}
+
+// An alpha-masked leaf standing on a floor (issue 28's test scene): a 2 m x 1.8 m double-sided panel
+// at z = 0 whose base colour texture cuts out a leaf (MASK, cutoff 0.5), a spot light in front
+// (+z) that lights it and shines through the cut-away part onto the floor behind, which receives the
+// leaf's shadow; the floor in front receives the light the leaf bounces. Cameras: "default"
+// (oblique), "behind" and "front" (straight down onto the floor behind and in front of the panel;
+// neither sees the panel).
+Scene makeCutout()
+{
+    Scene scene = newScene("cutout");
+    const int floorMaterial = addMaterial(scene, "floor", glm::vec3(0.6f));
+    const int leafMaterial = addMaterial(scene, "leaf", glm::vec3(1.0f));
+    scene.images.push_back(makeLeafImage(128));
+    Material& leaf = scene.materials[static_cast<std::size_t>(leafMaterial)];
+    leaf.baseColorTexture.image = static_cast<int>(scene.images.size()) - 1;
+    leaf.alphaMode = Material::AlphaMode::Mask;
+    leaf.alphaCutoff = 0.5f;
+    leaf.doubleSided = true;
+
+    Mesh floor = newMesh("floor", floorMaterial);
+    addRect(floor, glm::vec3(-3.0f, 0.0f, -3.0f), glm::vec3(0.0f, 0.0f, 6.0f), glm::vec3(6.0f, 0.0f, 0.0f), 1.0f);
+    placeMesh(scene, std::move(floor));
+    Mesh panel = newMesh("leaf", leafMaterial);
+    addRect(panel, glm::vec3(-1.0f, 0.1f, 0.0f), glm::vec3(2.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.8f, 0.0f), 2.0f);
+    placeMesh(scene, std::move(panel));
+
+    // Aimed at the panel's centre; the 28-degree cone takes in the whole panel (its corners are 16-25
+    // degrees off the axis) and lands on the floor behind it out to z = -2.4 m.
+    scene.lights.push_back(makeSpotLight("spot", glm::vec3(0.0f, 3.5f, 2.0f), glm::vec3(0.0f, 0.9f, 0.0f),
+                                         glm::vec3(1.0f), 30.0f, 26.0f, 28.0f));
+
+    scene.cameras.push_back(makeCamera("default", glm::vec3(2.4f, 2.4f, 3.0f), glm::vec3(0.0f, 0.5f, -0.5f), 45.0f,
+                                       0.05f, 30.0f));
+    Camera behind = makeCamera("behind", glm::vec3(0.0f, 2.0f, -1.2f), glm::vec3(0.0f, 0.0f, -1.2f), 40.0f, 0.05f, 30.0f);
+    behind.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.cameras.push_back(behind);
+    Camera front = makeCamera("front", glm::vec3(0.0f, 2.0f, 0.9f), glm::vec3(0.0f, 0.0f, 0.9f), 40.0f, 0.05f, 30.0f);
+    front.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.cameras.push_back(front);
+    scene.validate();
+    return scene;
+}
+
 } // namespace
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"board", "canyon", "caustics", "cornell", "furnace", "glossy", "maze", "sealed", "sealed-emissive", "sealed-point",
-            "sealed-spot", "street"};
+    return {"board", "canyon", "caustics", "cornell", "cutout", "furnace", "glossy", "maze", "sealed", "sealed-emissive",
+            "sealed-point", "sealed-spot", "street"};
 }
 
 bool isBuiltinScene(const std::string& name)
@@ -1270,6 +1344,7 @@ Scene makeBuiltinScene(const std::string& name)
     if (name == "canyon") return makeCanyon();
     if (name == "caustics") return makeCaustics(CausticsParams{});
     if (name == "cornell") return makeCornell();
+    if (name == "cutout") return makeCutout();
     if (name == "furnace") return makeFurnace(FurnaceParams{});
     if (name == "glossy") return makeGlossy();
     if (name == "maze") return makeMaze();

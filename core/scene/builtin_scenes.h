@@ -1,4 +1,4 @@
-// Scenes vplgi generates itself (no external assets): canyon, caustics, cornell, furnace, glossy, maze,
+// Scenes vplgi generates itself (no external assets): canyon, caustics, cornell, cutout, furnace, glossy, maze,
 // sealed (sealed-emissive, sealed-point, sealed-spot: the same rooms, one light type each), street.
 #pragma once
 

@@ -55,8 +55,16 @@ struct Material {
     TextureRef normalTexture;
     float normalScale = 1.0f;
     bool doubleSided = false;
+    // glTF alphaMode: OPAQUE ignores alpha; MASK keeps a point where the base colour's alpha
+    // (factor times texture, level 0, bilinear) is >= alphaCutoff and makes it absent elsewhere, in
+    // every pass that sees geometry and in every ray (glsl/shared/alpha_mask.h). The loader reads
+    // BLEND as MASK at 0.5 (vplgi has no transparency), with a warning.
+    enum class AlphaMode { Opaque, Mask };
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
 
     bool isEmissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
+    bool isMasked() const { return alphaMode == AlphaMode::Mask; }
 };
 
 // One triangle list with one material (a glTF primitive).

@@ -437,6 +437,7 @@ public:
             mScene.images.push_back(convertImage(i));
         for (std::size_t i = 0; i < mModel.materials.size(); ++i)
             mScene.materials.push_back(convertMaterial(i));
+        warnAboutBlendMaterials();
 
         mVisiting.assign(mModel.nodes.size(), false);
         for (int root : rootNodes())
@@ -463,6 +464,19 @@ private:
         if (mDroppedEmissive > 0) message += "; " + std::to_string(mDroppedEmissive) + " of them emissive";
         if (mEmptiedPrimitives > 0) message += "; " + plural(mEmptiedPrimitives, "primitive") + " left empty";
         warn(message);
+    }
+
+    // One line per file: vplgi renders no transparency, so a BLEND material is cut at alpha 0.5.
+    void warnAboutBlendMaterials() const
+    {
+        std::size_t count = 0;
+        std::string first;
+        for (std::size_t i = 0; i < mModel.materials.size(); ++i)
+            if (mModel.materials[i].alphaMode == "BLEND" && count++ == 0)
+                first = label("material", i, mModel.materials[i].name);
+        if (count == 0) return;
+        warn(mPath + ": " + std::to_string(count) + " material" + (count == 1 ? "" : "s") +
+             " with alphaMode BLEND, first " + first + ": drawn as MASK at alphaCutoff 0.5 (no transparency)");
     }
 
     static std::string label(const char* kind, std::size_t index, const std::string& name)
@@ -593,6 +607,18 @@ private:
         m.normalTexture = textureRef(src.normalTexture.index, src.normalTexture.texCoord, what);
         m.normalScale = static_cast<float>(src.normalTexture.scale);
         m.doubleSided = src.doubleSided;
+        // alphaMode (glTF 2.0 3.9.4): tinygltf leaves the string as written and alphaCutoff at 0.5 when
+        // absent. BLEND has no meaning without transparency: taken as MASK at 0.5 (warned in run()).
+        if (src.alphaMode == "MASK") {
+            if (!(src.alphaCutoff >= 0.0)) fail(what, "alphaCutoff must be >= 0");
+            m.alphaMode = Material::AlphaMode::Mask;
+            m.alphaCutoff = static_cast<float>(src.alphaCutoff);
+        } else if (src.alphaMode == "BLEND") {
+            m.alphaMode = Material::AlphaMode::Mask;
+            m.alphaCutoff = 0.5f;
+        } else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty()) {
+            fail(what, "alphaMode '" + src.alphaMode + "' is not OPAQUE, MASK or BLEND");
+        }
         return m;
     }
 

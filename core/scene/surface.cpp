@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "glsl/shared/alpha_mask.h"
+
 namespace vplgi {
 
 namespace {
@@ -39,20 +41,62 @@ glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb)
     return glm::mix(a, b, fy);
 }
 
+glm::vec2 texcoordAt(const Mesh& mesh, int triangle, glm::vec2 barycentric)
+{
+    const std::size_t first = 3 * static_cast<std::size_t>(triangle);
+    return (1.0f - barycentric.x - barycentric.y) * mesh.vertices[mesh.indices[first]].texcoord +
+           barycentric.x * mesh.vertices[mesh.indices[first + 1]].texcoord +
+           barycentric.y * mesh.vertices[mesh.indices[first + 2]].texcoord;
+}
+
+bool alphaMaskKeeps(const Scene& scene, const Material& m, glm::vec2 uv)
+{
+    if (!m.isMasked()) return true;
+    float alpha = m.baseColor.a;
+    if (m.baseColorTexture.valid())
+        alpha *= sampleImage(scene.images[static_cast<std::size_t>(m.baseColorTexture.image)], uv, false).a;
+    return shared::alphaMaskKeeps(alpha, m.alphaCutoff);
+}
+
+float alphaCoverage(const Scene& scene, const Material& m)
+{
+    if (!m.isMasked()) return 1.0f;
+    if (!m.baseColorTexture.valid()) return shared::alphaMaskKeeps(m.baseColor.a, m.alphaCutoff) ? 1.0f : 0.0f;
+    const Image& image = scene.images[static_cast<std::size_t>(m.baseColorTexture.image)];
+    std::size_t kept = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            kept += shared::alphaMaskKeeps(m.baseColor.a * texel(image, x, y, false).a, m.alphaCutoff) ? 1 : 0;
+    return static_cast<float>(static_cast<double>(kept) / std::max(1.0, static_cast<double>(image.width) * image.height));
+}
+
 UntexturedMaterials computeUntexturedMaterials(const Scene& scene)
 {
     UntexturedMaterials table;
     // Mean of a texture's texels (no filtering needed: the mean of a bilinear repeat-wrapped
     // reconstruction is the mean of its texels).
+    // (Alpha-masked materials: over the texels of the base colour texture their mask keeps, when the
+    // texture has the base colour texture's size; else over all.)
+    const Material* current = nullptr;
     auto mean = [&](const TextureRef& ref, bool srgb) {
         const Image& image = scene.images[static_cast<std::size_t>(ref.image)];
+        const Image* mask = current->isMasked() && current->baseColorTexture.valid()
+                                ? &scene.images[static_cast<std::size_t>(current->baseColorTexture.image)]
+                                : nullptr;
+        if (mask && (mask->width != image.width || mask->height != image.height)) mask = nullptr;
         glm::dvec4 sum(0.0);
+        double count = 0.0;
         for (int y = 0; y < image.height; ++y)
-            for (int x = 0; x < image.width; ++x) sum += glm::dvec4(texel(image, x, y, srgb));
-        const double count = std::max(1.0, static_cast<double>(image.width) * image.height);
-        return glm::vec4(sum / count);
+            for (int x = 0; x < image.width; ++x) {
+                if (mask && !shared::alphaMaskKeeps(current->baseColor.a * texel(*mask, x, y, false).a, current->alphaCutoff))
+                    continue;
+                sum += glm::dvec4(texel(image, x, y, srgb));
+                count += 1.0;
+            }
+        return glm::vec4(sum / std::max(1.0, count));
     };
     for (const Material& m : scene.materials) {
+        current = &m;
         glm::vec3 base(m.baseColor);
         if (m.baseColorTexture.valid()) base *= glm::vec3(mean(m.baseColorTexture, true));
         float metallic = m.metallic, roughness = m.roughness;

@@ -28,6 +28,7 @@ struct SurfacePoint {
 // albedos. The path traced reference images use the same approximation"). Per material: the base
 // colour factor times the mean of its base-colour texture (sRGB-decoded, as GL filters it), and the
 // metallic and roughness factors times the means of their texture channels. Normal maps are off.
+// Alpha-masked materials average over the texels their mask keeps (rays never see the others).
 struct UntexturedMaterials {
     std::vector<glm::vec3> baseColor; // per material, linear RGB
     std::vector<float> metallic;
@@ -43,6 +44,18 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
 
 // Bilinear, repeat-wrapped texture lookup; sRGB-decoded when `srgb`. Returns RGBA in [0,1].
 glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb);
+
+// The texture coordinate on triangle `triangle` of `mesh` at Embree barycentrics (u, v).
+glm::vec2 texcoordAt(const Mesh& mesh, int triangle, glm::vec2 barycentric);
+// Whether a point of material `m` at `uv` is present (glsl/shared/alpha_mask.h): always for opaque
+// materials; for masked ones where the base colour's alpha (factor times texture, bilinear) is >= the
+// cutoff.
+bool alphaMaskKeeps(const Scene& scene, const Material& m, glm::vec2 uv);
+// The fraction of a material's texture area that its alpha mask keeps (1 for opaque materials): the
+// fraction of texels kept, i.e. the mask of the nearest-texel reconstruction (bilinear filtering moves
+// the outline by under a texel). Not in any paper: what the untextured material tables and LightSkin's
+// cache areas scale by.
+float alphaCoverage(const Scene& scene, const Material& m);
 
 // Reflected direct radiance towards `wo` (unit, away from the surface) from every emitter of the
 // set, with Embree shadow rays. Excludes the point's own emission.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/scene/surface.h"
 #include "core/util/error.h"
 #include "core/util/random.h"
 
@@ -13,7 +14,12 @@ namespace {
 
 struct WorldTriangle {
     glm::vec3 p0, p1, p2;
+    const Material* masked = nullptr; // an alpha-masked material, else nullptr
+    glm::vec2 t0{0.0f}, t1{0.0f}, t2{0.0f}; // texture coordinates (masked only)
 };
+
+// Draws after which a point that keeps landing where alpha masks cut the surface gives up.
+constexpr int kMaxMaskedDraws = 4096;
 
 } // namespace
 
@@ -33,6 +39,13 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
             tri.p2 = glm::vec3(instance.worldFromObject * glm::vec4(mesh.vertices[mesh.indices[t + 2]].position, 1.0f));
             const double area = 0.5 * static_cast<double>(glm::length(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0)));
             if (!(area > 0.0)) continue; // degenerate triangles get no points (and have no normal)
+            const Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
+            if (material.isMasked()) {
+                tri.masked = &material;
+                tri.t0 = mesh.vertices[mesh.indices[t]].texcoord;
+                tri.t1 = mesh.vertices[mesh.indices[t + 1]].texcoord;
+                tri.t2 = mesh.vertices[mesh.indices[t + 2]].texcoord;
+            }
             points.totalArea += area;
             triangles.push_back(tri);
             cumulativeArea.push_back(points.totalArea);
@@ -45,6 +58,8 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
     points.normals.reserve(static_cast<std::size_t>(count));
     Pcg32 rng(mix64(seed), 0x15u);
     double blockOffset = 0.0;
+    const double totalArea = points.totalArea;
+    std::uint64_t draws = 0;
     for (int i = 0; i < count; ++i) {
         if (blockSize > 0 && i % blockSize == 0) blockOffset = static_cast<double>(rng.uniform());
         // Triangle by area: the first whose inclusive prefix sum exceeds u * total; in blocks, u is
@@ -71,11 +86,33 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
             golden = g - std::floor(g);
         }
         const float u2 = blockSize > 0 ? static_cast<float>(golden) : rng.uniform();
-        const float b1 = su * (1.0f - u2);
-        const float b2 = su * u2;
-        points.positions.push_back((1.0f - b1 - b2) * tri.p0 + b1 * tri.p1 + b2 * tri.p2);
-        points.normals.push_back(glm::normalize(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0)));
+        float b1 = su * (1.0f - u2);
+        float b2 = su * u2;
+        // Alpha masks (glsl/shared/alpha_mask.h): a point where the mask cuts the surface is drawn
+        // again, i.i.d. over all the area, until it lands on kept surface (rejection sampling: uniform
+        // over the kept area; the block's lattice loses those points' places).
+        const WorldTriangle* at = &tri;
+        auto cut = [&](const WorldTriangle& t, float c1, float c2) {
+            return t.masked && !alphaMaskKeeps(scene, *t.masked, (1.0f - c1 - c2) * t.t0 + c1 * t.t1 + c2 * t.t2);
+        };
+        ++draws;
+        for (int tries = 1; cut(*at, b1, b2); ++tries) {
+            require(tries < kMaxMaskedDraws, "surface points: the alpha masks of scene '" + scene.name +
+                                                 "' keep almost none of its surface (" + std::to_string(tries) +
+                                                 " draws cut away in a row)");
+            const double again = static_cast<double>(rng.uniform()) * totalArea;
+            const auto hit = std::upper_bound(cumulativeArea.begin(), cumulativeArea.end(), again);
+            at = &triangles[std::min(static_cast<std::size_t>(hit - cumulativeArea.begin()), triangles.size() - 1)];
+            const float s = std::sqrt(rng.uniform()), v = rng.uniform();
+            b1 = s * (1.0f - v);
+            b2 = s * v;
+            ++draws;
+        }
+        points.positions.push_back((1.0f - b1 - b2) * at->p0 + b1 * at->p1 + b2 * at->p2);
+        points.normals.push_back(glm::normalize(glm::cross(at->p1 - at->p0, at->p2 - at->p0)));
     }
+    // The kept area: the acceptance rate of the draws estimates the fraction the masks keep.
+    if (draws > static_cast<std::uint64_t>(count)) points.totalArea *= static_cast<double>(count) / static_cast<double>(draws);
     return points;
 }
 

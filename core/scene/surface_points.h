@@ -20,11 +20,12 @@ namespace vplgi {
 struct SurfacePoints {
     std::vector<glm::vec3> positions; // world space [m]
     std::vector<glm::vec3> normals;   // unit geometric normals (triangle winding), world space
-    double totalArea = 0.0;           // world-space area of all triangles [m^2]
+    double totalArea = 0.0;           // world-space area of all triangles [m^2]; with alpha masks, the part
+                                      // they keep as the draws estimate it (exact without masks)
 };
 
-// `count` points (>= 0) uniform over the surface area of `scene` (throws Error when count > 0 and
-// the scene has no triangle of positive area). blockSize 0: i.i.d. points. blockSize n > 0 (ours,
+// `count` points (>= 0) uniform over the surface area of `scene` that its alpha masks keep (throws
+// Error when count > 0 and the scene has no triangle of positive area, or its masks keep almost none). blockSize 0: i.i.d. points. blockSize n > 0 (ours,
 // for imperfect shadow maps): each block of n consecutive points (points i with the same i / n) is a
 // stratified sample, the k-th drawn from the k-th n-th of the area in triangle order, so every
 // triangle gets its share of a block within one point, and any n consecutive points still cover the

@@ -13,13 +13,26 @@
 
 #include <embree3/rtcore.h>
 
+#include "core/scene/surface.h"
 #include "core/util/error.h"
 
 namespace vplgi {
 
+namespace {
+
+// What the alpha-mask filter of one masked instance's geometry reads.
+struct MaskedGeometry {
+    const Scene* scene = nullptr;
+    const Mesh* mesh = nullptr;
+    const Material* material = nullptr;
+};
+
+} // namespace
+
 struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
+    std::vector<MaskedGeometry> masked; // sized once, so the user pointers stay valid
     ~Impl()
     {
         if (scene) rtcReleaseScene(scene);
@@ -35,6 +48,21 @@ void throwOnDeviceError(RTCDevice device, const char* what)
     require(error == RTC_ERROR_NONE, std::string("Embree: ") + what + " failed (error " + std::to_string(int(error)) + ")");
 }
 
+// Embree's intersection and occlusion filter for alpha-masked geometry: a hit where the mask cuts
+// the surface (glsl/shared/alpha_mask.h, at the hit's texture coordinate) is rejected and the ray goes
+// on, so closest hits, shadow rays and every sampler see the cut-out as the rasterizer draws it.
+void alphaMaskFilter(const RTCFilterFunctionNArguments* args)
+{
+    const auto* geometry = static_cast<const MaskedGeometry*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+        const glm::vec2 barycentric(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+        const glm::vec2 uv = texcoordAt(*geometry->mesh, static_cast<int>(triangle), barycentric);
+        if (!alphaMaskKeeps(*geometry->scene, *geometry->material, uv)) args->valid[i] = 0;
+    }
+}
+
 } // namespace
 
 RayScene::RayScene(const Scene& scene) : mScene(scene), mImpl(std::make_unique<Impl>())
@@ -43,6 +71,7 @@ RayScene::RayScene(const Scene& scene) : mScene(scene), mImpl(std::make_unique<I
     require(mImpl->device != nullptr, "Embree: cannot create a device");
     mImpl->scene = rtcNewScene(mImpl->device);
     rtcSetSceneBuildQuality(mImpl->scene, RTC_BUILD_QUALITY_HIGH);
+    mImpl->masked.reserve(scene.instances.size());
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[instance.mesh];
@@ -59,6 +88,13 @@ RayScene::RayScene(const Scene& scene) : mScene(scene), mImpl(std::make_unique<I
             vertices[3 * v + 2] = p.z;
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+        const Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
+        if (material.isMasked()) {
+            mImpl->masked.push_back({&scene, &mesh, &material});
+            rtcSetGeometryUserData(geometry, &mImpl->masked.back());
+            rtcSetGeometryIntersectFilterFunction(geometry, alphaMaskFilter);
+            rtcSetGeometryOccludedFilterFunction(geometry, alphaMaskFilter);
+        }
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(mImpl->scene, geometry, static_cast<unsigned>(i));
         rtcReleaseGeometry(geometry);

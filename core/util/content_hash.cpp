@@ -56,6 +56,8 @@ std::uint64_t hashSceneContent(const Scene& scene)
         h.value(m.normalTexture.image);
         h.value(m.normalScale);
         h.value(m.doubleSided);
+        h.value(m.alphaMode);
+        h.value(m.alphaCutoff);
     }
     h.value(scene.images.size());
     for (const Image& img : scene.images) {

@@ -6,9 +6,10 @@ namespace vplgi {
 
 namespace {
 
-gl::Program loadProgram(const gl::ShaderLoader& shaders)
+SceneProgram loadProgram(const gl::ShaderLoader& shaders)
 {
-    return shaders.load("gbuffer", {{GL_VERTEX_SHADER, "passes/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "passes/gbuffer.frag"}});
+    return SceneProgram(shaders, "gbuffer",
+                        {{GL_VERTEX_SHADER, "passes/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "passes/gbuffer.frag"}});
 }
 
 } // namespace
@@ -47,7 +48,6 @@ void GBufferPass::render(const GpuScene& scene, int width, int height)
     mGBuffer.target.clear(glm::vec4(0.0f), 1.0f);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glUseProgram(mProgram.id());
     scene.draw(mProgram, GpuScene::Bind::GeometryAndMaterial);
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);

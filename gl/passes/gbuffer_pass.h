@@ -43,7 +43,7 @@ public:
     const GBuffer& gbuffer() const { return mGBuffer; }
 
 private:
-    gl::Program mProgram;
+    SceneProgram mProgram;
     GBuffer mGBuffer;
 };
 

@@ -26,9 +26,9 @@ void RSMParams::visitParams(ParamVisitor& v)
 
 namespace {
 
-gl::Program loadProgram(const gl::ShaderLoader& shaders)
+SceneProgram loadProgram(const gl::ShaderLoader& shaders)
 {
-    return shaders.load("rsm", {{GL_VERTEX_SHADER, "passes/rsm.vert"}, {GL_FRAGMENT_SHADER, "passes/rsm.frag"}});
+    return SceneProgram(shaders, "rsm", {{GL_VERTEX_SHADER, "passes/rsm.vert"}, {GL_FRAGMENT_SHADER, "passes/rsm.frag"}});
 }
 
 float texelFactor(const glm::mat4& clipFromView, int size)
@@ -208,7 +208,6 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     mTarget.clear(glm::vec4(0.0f), 1.0f);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glUseProgram(mProgram.id());
     for (int layer = 0; layer < layerCount(); ++layer) {
         const RSMView& view = mViews[static_cast<std::size_t>(layer)];
         mProgram.set("uLayer", layer);

@@ -165,7 +165,7 @@ public:
                                           int size);
 
 private:
-    gl::Program mProgram;
+    SceneProgram mProgram;
     ComputePass mDownsample;
     RSMMips mMips;
     gl::RenderTarget mTarget;

@@ -17,10 +17,10 @@ namespace vplgi {
 
 namespace {
 
-gl::Program loadProgram(const gl::ShaderLoader& shaders, const std::string& name)
+SceneProgram loadProgram(const gl::ShaderLoader& shaders, const std::string& name)
 {
-    return shaders.load(
-        name, {{GL_VERTEX_SHADER, "passes/shadow_atlas.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_atlas.frag"}});
+    return SceneProgram(shaders, name,
+                        {{GL_VERTEX_SHADER, "passes/shadow_atlas.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_atlas.frag"}});
 }
 
 constexpr double kBytesPerTexel = 4.0; // DEPTH32F
@@ -164,7 +164,6 @@ void ShadowAtlas::renderDirty(const GpuScene& scene, const std::vector<std::uint
         glEnable(GL_CLIP_DISTANCE0 + plane);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowAtlasMatrices, mMatrixBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowAtlasDraw, mDrawTiles.id());
-    glUseProgram(mProgram.id());
     mProgram.set("uTilesPerRow", mLayout.tilesPerRow);
     scene.draw(mProgram, GpuScene::Bind::Geometry, static_cast<GLsizei>(drawTiles.size()));
     glUseProgram(0);

@@ -117,7 +117,7 @@ private:
     std::string mName;
     ShadowAtlasParams mParams;
     ShadowAtlasLayout mLayout;
-    gl::Program mProgram;
+    SceneProgram mProgram;
     gl::RenderTarget mTarget;         // depth only: DEPTH32F 2D array, mLayout.layers layers
     std::vector<glm::mat4> mMatrices; // clipFromWorld per tile index (CPU mirror of mMatrixBuffer)
     gl::Buffer mMatrixBuffer;

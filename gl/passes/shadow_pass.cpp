@@ -21,16 +21,16 @@ void ShadowParams::visitParams(ParamVisitor& v)
 
 namespace {
 
-gl::Program loadPoint(const gl::ShaderLoader& shaders)
+SceneProgram loadPoint(const gl::ShaderLoader& shaders)
 {
-    return shaders.load("shadow point",
+    return SceneProgram(shaders, "shadow point",
                         {{GL_VERTEX_SHADER, "passes/shadow.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_point.frag"}});
 }
 
-gl::Program loadDirectional(const gl::ShaderLoader& shaders)
+SceneProgram loadDirectional(const gl::ShaderLoader& shaders)
 {
-    return shaders.load("shadow directional", {{GL_VERTEX_SHADER, "passes/shadow.vert"},
-                                               {GL_FRAGMENT_SHADER, "passes/shadow_directional.frag"}});
+    return SceneProgram(shaders, "shadow directional",
+                        {{GL_VERTEX_SHADER, "passes/shadow.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_directional.frag"}});
 }
 
 } // namespace
@@ -106,7 +106,6 @@ void ShadowPass::renderCubes(const GpuScene& scene, DirectLightSet& lights, cons
     mCubes.bindForDrawing();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mCubeMatrices.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingPointEmitters, mEmitters.id());
-    glUseProgram(mPointProgram.id());
     mPointProgram.set("uFarDistance", mFar);
     const float one = 1.0f;
     for (int first = 0; first < cubeCount;) {
@@ -146,7 +145,6 @@ void ShadowPass::renderDirectional(const GpuScene& scene, DirectLightSet& lights
     mDirectional.bindForDrawing();
     mDirectional.clear();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mDirectionalMatrices.id());
-    glUseProgram(mDirectionalProgram.id());
     mDirectionalProgram.set("uFirstLayer", 0);
     scene.draw(mDirectionalProgram, GpuScene::Bind::Geometry, count);
 }

@@ -49,8 +49,8 @@ public:
 private:
     void renderCubes(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params, float near);
     void renderDirectional(const GpuScene& scene, DirectLightSet& lights, const ShadowParams& params);
-    gl::Program mPointProgram;
-    gl::Program mDirectionalProgram;
+    SceneProgram mPointProgram;
+    SceneProgram mDirectionalProgram;
     gl::RenderTarget mCubes;       // depth only: DEPTH32F cube-map array, layer = emitter * 6 + face
     gl::RenderTarget mDirectional; // depth only: DEPTH32F 2D array, layer = directional emitter
     gl::Buffer mCubeMatrices;

@@ -17,9 +17,9 @@ namespace vplgi {
 
 namespace {
 
-gl::Program loadDebugProgram(const gl::ShaderLoader& shaders)
+SceneProgram loadDebugProgram(const gl::ShaderLoader& shaders)
 {
-    return shaders.load("VPL debug views",
+    return SceneProgram(shaders, "VPL debug views",
                         {{GL_VERTEX_SHADER, "passes/vpl_debug.vert"}, {GL_FRAGMENT_SHADER, "passes/vpl_debug.frag"}});
 }
 
@@ -280,7 +280,7 @@ void VPLTechnique::drawDebugOverlay(const FrameContext& frame, const gl::Texture
 {
     gl::DebugGroup group(std::string(name()) + " debug overlay");
     const AABB bounds = mScene->worldBounds();
-    const gl::Program& program = mDebugProgram;
+    const gl::Program& program = mDebugProgram.opaque();
     glUseProgram(program.id());
     bindStorageBuffer(shared::kBindingVPLs, mVPLBuffer);
     program.set("uColorScale", colorScale);
@@ -293,15 +293,17 @@ void VPLTechnique::drawDebugOverlay(const FrameContext& frame, const gl::Texture
         mOverhead.clear();
         mOverhead.bindForDrawing();
         clipFromWorld = shared::lightViewDirectionalFit(glm::vec3(0.0f, -1.0f, 0.0f), bounds.lower, bounds.upper);
-        program.set("uClipFromWorld", clipFromWorld);
-        program.set("uMode", 0);
-        program.set("uCutHeight", bounds.upper.y + 1.0f);
-        program.set("uHeightRange", glm::vec2(bounds.lower.y, bounds.upper.y));
+        // The scene through both variants (alpha-masked materials cut as every pass cuts them).
+        mDebugProgram.set("uClipFromWorld", clipFromWorld);
+        mDebugProgram.set("uMode", 0);
+        mDebugProgram.set("uCutHeight", bounds.upper.y + 1.0f);
+        mDebugProgram.set("uHeightRange", glm::vec2(bounds.lower.y, bounds.upper.y));
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
-        mGpuScene->draw(program, GpuScene::Bind::Geometry); // (it leaves culling off)
+        mGpuScene->draw(mDebugProgram, GpuScene::Bind::Geometry); // (it leaves culling off and no program bound)
+        glUseProgram(program.id());
         glDisable(GL_DEPTH_TEST);
         // The camera frustum: near corners and the corners half a scene diagonal further on.
         const glm::mat4 worldFromClip = glm::inverse(frame.clipFromWorld);

@@ -138,7 +138,7 @@ private:
     std::unique_ptr<CrossBilateralFilter> mFilter;
     gl::Buffer mVPLBuffer;
     gl::RenderTarget mInterleaved; // the shading pass's output, before the filter
-    gl::Program mDebugProgram;     // passes/vpl_debug.*: splats and the overhead view, drawn while shown
+    SceneProgram mDebugProgram;    // passes/vpl_debug.*: splats and the overhead view, drawn while shown
     gl::VertexArray mEmptyVertexArray;
     gl::RenderTarget mSplats;      // the indirect image with the VPLs drawn over it
     gl::RenderTarget mOverhead;    // the scene from above, the VPLs and the camera frustum (Fig. 3 bottom)

@@ -5,6 +5,7 @@
 #include "../lib/frame.glsl"
 #include "../shared/normals.h"
 #include "../lib/geometric_normal.glsl"
+#include "../lib/alpha_mask.glsl"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -58,4 +59,5 @@ void main()
     outBaseColor = vec4(base.rgb, metallic);
     outEmission = vec4(emission, uMaterial.z);
     outSurfaceNormals = vec4(octEncode(geometric), octEncode(interpolated));
+    discardMasked(uBaseColorTexture, vTexcoord);
 }

@@ -8,6 +8,7 @@
 #include "../shared/sg.h"
 #include "../shared/normals.h"
 #include "../lib/geometric_normal.glsl"
+#include "../lib/alpha_mask.glsl"
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
@@ -98,4 +99,5 @@ void main()
     outDiffuse = vec4(diffuse, geometricOct.y);
     outSpecular = vec4(f0, roughness);
     outLobe = vec4(toksvigEncode(lobe.axis, lobe.sharpness), lobe.integral);
+    discardMasked(uBaseColorTexture, vTexcoord);
 }

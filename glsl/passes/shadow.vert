@@ -7,6 +7,7 @@
 #include "../lib/frame.glsl"
 
 layout(location = 0) in vec3 aPosition;
+layout(location = 2) in vec2 aTexcoord;
 
 uniform mat4 uWorldFromObject;
 uniform int uFirstLayer;
@@ -17,6 +18,7 @@ layout(std430, binding = kBindingShadowMatrices) readonly buffer ShadowMatrices 
 
 layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) flat out int vLayer;
+layout(location = 2) out vec2 vTexcoord; // for alpha masks
 
 void main()
 {
@@ -24,6 +26,7 @@ void main()
     vec4 world = uWorldFromObject * vec4(aPosition, 1.0);
     vWorldPosition = world.xyz;
     vLayer = layer;
+    vTexcoord = aTexcoord;
     gl_Layer = layer;
     gl_Position = clipFromWorldPerLayer[layer] * world;
 }

@@ -10,6 +10,7 @@
 #include "../shared/shadow_atlas.h"
 
 layout(location = 0) in vec3 aPosition;
+layout(location = 2) in vec2 aTexcoord;
 
 uniform mat4 uWorldFromObject;
 uniform int uTilesPerRow;
@@ -21,6 +22,8 @@ layout(std430, binding = kBindingShadowAtlasMatrices) readonly buffer ShadowAtla
 layout(std430, binding = kBindingShadowAtlasDraw) readonly buffer ShadowAtlasDraw {
     int drawTiles[];
 };
+
+layout(location = 2) out vec2 vTexcoord; // for alpha masks (location 2, as passes/shadow.vert)
 
 out float gl_ClipDistance[4];
 
@@ -36,5 +39,6 @@ void main()
     gl_ClipDistance[2] = distances.z;
     gl_ClipDistance[3] = distances.w;
     gl_Layer = tile.z;
+    vTexcoord = aTexcoord;
     gl_Position = shadowAtlasClipFromViewClip(clip, tile, uTilesPerRow);
 }

@@ -7,6 +7,7 @@
 #include "../shared/vpl.h"
 
 layout(location = 0) in vec3 aPosition;
+layout(location = 2) in vec2 aTexcoord;
 
 layout(std430, binding = kBindingVPLs) readonly buffer VPLs {
     GpuVPL vpls[];
@@ -19,6 +20,7 @@ uniform vec3 uLines[24];
 uniform float uPointSize;
 
 out vec3 vWorld;
+out vec2 vTexcoord; // uMode 0: for alpha masks
 flat out vec3 vColor;
 
 void main()
@@ -39,6 +41,7 @@ void main()
         world = uLines[gl_VertexID];
     }
     vWorld = world;
+    vTexcoord = uMode == 0 ? aTexcoord : vec2(0.0);
     gl_PointSize = uPointSize;
     gl_Position = uClipFromWorld * vec4(world, 1.0);
 }

@@ -445,6 +445,54 @@ TEST_CASE("glTF: materials with emissive strength and specular plus textures and
           std::vector<std::uint8_t>{254, 254, 254, 128});
 }
 
+TEST_CASE("glTF: alphaMode MASK keeps its cutoff, BLEND becomes MASK at 0.5 with one warning, others are refused",
+          "[scene_loader][alpha]")
+{
+    TempDir dir;
+    auto build = [&](const std::vector<json>& materials) {
+        GltfBuilder b;
+        const int positions = b.addData<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}, kFloat, "VEC3", 3);
+        json primitives = json::array();
+        for (std::size_t i = 0; i < materials.size(); ++i) {
+            primitives.push_back({{"attributes", {{"POSITION", positions}}}, {"material", static_cast<int>(i)}});
+            b.append("materials", materials[i]);
+        }
+        b.append("meshes", {{"name", "m"}, {"primitives", primitives}});
+        b.append("nodes", {{"mesh", 0}});
+        b.setScene({0});
+        return b.gltfWithDataUri();
+    };
+    const std::string path = dir.file("alpha.gltf");
+    writeFile(path, build({{{"name", "plain"}},
+                           {{"name", "opaque"}, {"alphaMode", "OPAQUE"}, {"alphaCutoff", 0.2}},
+                           {{"name", "mask"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.3}},
+                           {{"name", "mask default"}, {"alphaMode", "MASK"}},
+                           {{"name", "blend"}, {"alphaMode", "BLEND"}, {"alphaCutoff", 0.9}},
+                           {{"name", "blend too"}, {"alphaMode", "BLEND"}}}));
+    vplgi::WarningCapture warnings;
+    const vplgi::Scene scene = vplgi::loadGltf(path);
+    REQUIRE(scene.materials.size() == 6);
+    using Mode = vplgi::Material::AlphaMode;
+    CHECK(scene.materials[0].alphaMode == Mode::Opaque);
+    CHECK(scene.materials[1].alphaMode == Mode::Opaque);
+    CHECK(scene.materials[2].alphaMode == Mode::Mask);
+    CHECK(scene.materials[2].alphaCutoff == Approx(0.3f));
+    CHECK(scene.materials[3].alphaMode == Mode::Mask);
+    CHECK(scene.materials[3].alphaCutoff == Approx(0.5f)); // glTF's default
+    CHECK(scene.materials[4].alphaMode == Mode::Mask);
+    CHECK(scene.materials[4].alphaCutoff == Approx(0.5f)); // BLEND's cutoff is ours, not the file's
+    CHECK(scene.materials[5].isMasked());
+    REQUIRE(warnings.messages().size() == 1);
+    CHECK(warnings.messages()[0] == path + ": 2 materials with alphaMode BLEND, first material 4 (blend): drawn as "
+                                           "MASK at alphaCutoff 0.5 (no transparency)");
+
+    writeFile(path, build({{{"name", "odd"}, {"alphaMode", "mask"}}}));
+    CHECK(errorOf([&] { vplgi::loadGltf(path); }) ==
+          path + ": material 0 (odd): alphaMode 'mask' is not OPAQUE, MASK or BLEND");
+    writeFile(path, build({{{"name", "negative"}, {"alphaMode", "MASK"}, {"alphaCutoff", -0.5}}}));
+    CHECK(errorOf([&] { vplgi::loadGltf(path); }) == path + ": material 0 (negative): alphaCutoff must be >= 0");
+}
+
 TEST_CASE("glTF: KHR_lights_punctual lights take the node's world transform", "[scene_loader]")
 {
     TempDir dir;

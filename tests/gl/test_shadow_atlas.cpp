@@ -56,8 +56,8 @@ std::vector<float> readAll(const ShadowAtlas& atlas)
 class SingleViewRenderer {
 public:
     explicit SingleViewRenderer(int size)
-        : mProgram(test::shaders().load("single view", {{GL_VERTEX_SHADER, "passes/shadow.vert"},
-                                                        {GL_FRAGMENT_SHADER, "passes/shadow_atlas.frag"}}))
+        : mProgram(test::shaders(), "single view",
+                   {{GL_VERTEX_SHADER, "passes/shadow.vert"}, {GL_FRAGMENT_SHADER, "passes/shadow_atlas.frag"}})
     {
         gl::RenderTargetDesc desc;
         desc.depthFormat = GL_DEPTH_COMPONENT32F;
@@ -75,16 +75,14 @@ public:
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kBindingShadowMatrices, mMatrix.id());
-        glUseProgram(mProgram.id());
         mProgram.set("uFirstLayer", 0);
         scene.draw(mProgram, GpuScene::Bind::Geometry, 1);
-        glUseProgram(0);
         glDisable(GL_DEPTH_TEST);
         return readDepth(mTarget.depth(), 0, 0, 0, mTarget.width(), mTarget.height());
     }
 
 private:
-    gl::Program mProgram;
+    SceneProgram mProgram;
     gl::RenderTarget mTarget;
     gl::Buffer mMatrix;
 };
