@@ -76,6 +76,7 @@ private:
     gl::Texture mWhite;      // default for colour and metallic-roughness textures
     gl::Texture mFlatNormal; // default normal map (0.5, 0.5, 1)
     gl::Sampler mMaterialSampler;
+    gl::Sampler mMaskSampler; // level 0, bilinear, no anisotropy: what the alpha test reads in depth-only passes
 };
 
 } // namespace vplgi
