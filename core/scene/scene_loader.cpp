@@ -1389,6 +1389,8 @@ Scene loadSceneSource(const std::string& source, const std::string& sceneFilePat
 //   normalMaps      bool, default true: false drops every material's normal map, for the renderer
 //                     and the path tracer alike (a scene with and without its bumps, e.g. the glossy
 //                     room's normal-mapped floor: docs/conformance.md "Normals")
+//   alphaMasks      bool, default true: false makes every alpha-masked material opaque, for the
+//                     renderer and the path tracer alike (scenes/cutout-solid.json)
 SceneDescription loadSceneFile(const std::string& path)
 {
     requireFile(path);
@@ -1410,7 +1412,7 @@ SceneDescription loadSceneFileFromText(const std::string& text, const std::strin
     SceneFileReader r(path);
     r.checkKeys(doc, "",
                 {"name", "source", "replaceLights", "lights", "replaceCameras", "cameras", "animations", "technique",
-                 "settings", "normalMaps"});
+                 "settings", "normalMaps", "alphaMasks"});
 
     const Json* source = SceneFileReader::find(doc, "source");
     if (source == nullptr) r.fail("", "needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -1428,6 +1430,9 @@ SceneDescription loadSceneFileFromText(const std::string& text, const std::strin
     if (const Json* v = SceneFileReader::find(doc, "normalMaps"))
         if (!r.boolean(*v, "", "normalMaps"))
             for (Material& m : scene.materials) m.normalTexture = {};
+    if (const Json* v = SceneFileReader::find(doc, "alphaMasks"))
+        if (!r.boolean(*v, "", "alphaMasks"))
+            for (Material& m : scene.materials) m.alphaMode = Material::AlphaMode::Opaque;
     if (const Json* v = SceneFileReader::find(doc, "replaceLights"))
         if (r.boolean(*v, "", "replaceLights")) scene.lights.clear();
     if (const Json* v = SceneFileReader::find(doc, "lights")) {

@@ -1023,6 +1023,25 @@ TEST_CASE("scene file: \"normalMaps\": false drops every normal map, for the ren
     CHECK(errorOf([&] { vplgi::loadSceneFile(path); }) == path + ": \"normalMaps\" must be true or false");
 }
 
+TEST_CASE("scene file: \"alphaMasks\": false makes every masked material opaque (scenes/cutout-solid.json)",
+          "[scene_loader][alpha]")
+{
+    const vplgi::Scene masked = vplgi::makeBuiltinScene("cutout");
+    const vplgi::Scene solid = vplgi::loadSceneSpec(std::string(VPLGI_SOURCE_DIR) + "/scenes/cutout-solid.json").scene;
+    REQUIRE(solid.materials.size() == masked.materials.size());
+    int maskedCount = 0;
+    for (std::size_t i = 0; i < solid.materials.size(); ++i) {
+        maskedCount += masked.materials[i].isMasked() ? 1 : 0;
+        CHECK_FALSE(solid.materials[i].isMasked());
+        CHECK(solid.materials[i].baseColorTexture.image == masked.materials[i].baseColorTexture.image);
+    }
+    CHECK(maskedCount == 1);
+    TempDir dir;
+    const std::string path = dir.file("solid.json");
+    writeFile(path, R"({"source": "builtin:cutout", "alphaMasks": "no"})");
+    CHECK(errorOf([&] { vplgi::loadSceneFile(path); }) == path + ": \"alphaMasks\" must be true or false");
+}
+
 TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
 {
     TempDir dir;
@@ -1048,7 +1067,7 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
         "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0]}]})") ==
           path + ": cameras[0]: \"target\" must be an array of 3 numbers");
     CHECK(errorFor(R"({"source": "builtin:nope"})") ==
-          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: board, canyon, caustics, cornell, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
+          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
     CHECK(errorFor(R"({"source": "obj:x.obj"})") ==
           path + ": \"source\" must start with \"builtin:\" or \"gltf:\" (got \"obj:x.obj\")");
     CHECK(errorFor(R"({"name": "x"})") == path + ": needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -1081,7 +1100,7 @@ TEST_CASE("loadSceneSpec resolves built-in names and paths", "[scene_loader]")
     CHECK_FALSE(cornell.scene.cameras.empty());
 
     CHECK(errorOf([] { vplgi::loadSceneSpec("cornel"); }) ==
-          "unknown scene \"cornel\" (built-in scenes: board, canyon, caustics, cornell, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street; or a .json/.gltf/.glb path)");
+          "unknown scene \"cornel\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street; or a .json/.gltf/.glb path)");
     const std::string missing = dir.file("missing.json");
     CHECK(errorOf([&] { vplgi::loadSceneSpec(missing); }) == missing + ": no such file");
 
