@@ -267,7 +267,7 @@ SessionOptions sessionFor(const ConformOptions& o, const std::string& sceneSpec,
     options.loaded = scene; // loaded once per scene, copied for each run
     options.technique = entry.technique;
     options.camera = camera;
-    options.settings = o.settings;
+    options.settings = measuringSettings(o.settings);
     options.settings.insert(options.settings.end(), entry.settings.begin(), entry.settings.end());
     options.settings.insert(options.settings.end(), extra.begin(), extra.end());
     options.rejectUnknownSettings = false; // checked once for all techniques (createSessions)

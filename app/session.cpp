@@ -149,6 +149,13 @@ std::string Session::parameterList()
     return dumper.text();
 }
 
+Settings measuringSettings(const Settings& settings)
+{
+    Settings out = {{"renderer.antialias", "none"}};
+    out.insert(out.end(), settings.begin(), settings.end());
+    return out;
+}
+
 std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpec, const std::string& camera,
                                                      const std::vector<std::string>& techniques,
                                                      const std::vector<Settings>& settingsPerTechnique,
@@ -161,7 +168,7 @@ std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpe
         options.sceneSpec = sceneSpec;
         options.technique = techniques[i];
         options.camera = camera;
-        options.settings = settingsPerTechnique[i];
+        options.settings = measuringSettings(settingsPerTechnique[i]);
         options.rejectUnknownSettings = false;
         sessions.push_back(std::make_unique<Session>(options));
         used.insert(sessions.back()->usedKeys().begin(), sessions.back()->usedKeys().end());

@@ -84,8 +84,12 @@ TechniqueEntry parseTechniqueEntry(const std::string& entry);
 ImageRGBA32F indirectPart(const Renderer& renderer);
 
 class Session;
-// Sessions of one scene with several techniques (compare, bench): each gets its settings list; keys
-// no session (and no field in `alsoKnown`) recognises are an error, checked before any GL work.
+// `settings` after {renderer.antialias = none}: what compare, bench and conform measure and show is
+// never antialiased unless a --set asks for it.
+Settings measuringSettings(const Settings& settings);
+// Sessions of one scene with several techniques (compare, bench): each gets its settings list (after
+// measuringSettings'); keys no session (and no field in `alsoKnown`) recognises are an error, checked
+// before any GL work.
 std::vector<std::unique_ptr<Session>> createSessions(const std::string& sceneSpec, const std::string& camera,
                                                      const std::vector<std::string>& techniques,
                                                      const std::vector<Settings>& settingsPerTechnique,

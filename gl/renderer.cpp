@@ -39,6 +39,10 @@ void RendererParams::visitParams(ParamVisitor& v, const std::vector<std::string>
     v.choice("renderer.display", display, viewNames,
              "what the display image shows (PNG output, window): a view of the frame or a texture view "
              "(gl/debug_view.h); EXR output stays the final radiance");
+    v.choice("renderer.antialias", antialias, {"fxaa", "none"},
+             "antialiasing of the display image (PNG output, window; frame views, not texture views) after tone "
+             "mapping: FXAA (Lottes 2009) or none; the radiance (EXR, every metric) never has it, and compare, "
+             "bench and conform set none");
     v.field("renderer.displayLayer", displayLayer, -1, 1 << 20,
             "layer of a texture view (renderer.display) shown alone, from its first; -1: all its layers tiled");
     v.field("lights.emitterSamples", lights.emitterSamples, 1, 4096,
@@ -51,11 +55,13 @@ Renderer::Renderer(const gl::ShaderLoader& shaders, const Scene& scene, const Re
                    std::unique_ptr<Technique> technique, ProgressSink progress)
     : mShaders(shaders), mScene(scene), mParams(params), mGpuScene(scene), mRays(scene), mTechnique(std::move(technique)),
       mShadows(shaders), mGBuffer(shaders), mDirect(shaders, "direct light", "passes/direct.frag"),
-      mToneMap(shaders, "tone map", "passes/tonemap.frag"),
+      mToneMap(shaders, "tone map", "passes/tonemap.frag"), mAntialias(shaders, "antialias", "passes/fxaa.frag"),
       mDirectTarget("direct light", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
       mIndirectTarget("indirect", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"})),
       mOutput("output", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
       mInset("inset", gl::RenderTargetDesc::colors({GL_RGBA8, GL_RGBA32F}, {"display", "radiance"})),
+      mAntialiased("antialiased", gl::RenderTargetDesc::colors({GL_RGBA8}, {"display"})),
+      mAntialiasSampler("antialias sampler", gl::SamplerDesc{}),
       mNoDisplayView(gl::Texture::placeholder("no display view", GL_TEXTURE_2D_ARRAY, GL_RGBA8)),
       mFrameUniforms("frame uniforms", sizeof(shared::FrameUniforms)),
       mTimer(gl::PassTimer::defaultMode())
@@ -87,6 +93,7 @@ void Renderer::reloadShaders()
     mGBuffer.reloadShaders(mShaders);
     mDirect.reloadShaders(mShaders);
     mToneMap.reloadShaders(mShaders);
+    mAntialias.reloadShaders(mShaders);
     mTechnique->reloadShaders(mShaders);
 }
 
@@ -156,6 +163,19 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
         bindDisplayView();
         mOutput.resize(width, height);
         mToneMap.render(mOutput);
+    }
+    // The frame views (final, direct, indirect, albedo, normal, depth), not the texture views, which
+    // show their texels as they are.
+    const std::vector<std::string> frameViews = frameViewNames();
+    if (mParams.antialias == "fxaa" &&
+        std::find(frameViews.begin(), frameViews.end(), mParams.display) != frameViews.end()) {
+        gl::PassTimer::Scope scope(mTimer, "antialias");
+        glBindTextureUnit(shared::kUnitAntialiasInput, mOutput.color(0).id());
+        glBindSampler(shared::kUnitAntialiasInput, mAntialiasSampler.id());
+        mAntialiased.resize(width, height);
+        mAntialias.render(mAntialiased);
+        glCopyImageSubData(mAntialiased.color(0).id(), GL_TEXTURE_2D, 0, 0, 0, 0, mOutput.color(0).id(), GL_TEXTURE_2D,
+                           0, 0, 0, 0, width, height, 1);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     mTimer.endFrame();

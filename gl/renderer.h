@@ -36,6 +36,7 @@ std::vector<std::string> displayViewNames(const std::vector<DebugView>& techniqu
 struct RendererParams {
     float exposure = 1.0f;           // radiance scale before Reinhard tone mapping
     std::string display = "final";   // what the display shows: a name of displayViewNames() (renderer.display)
+    std::string antialias = "fxaa";  // the display's antialiasing (frame views): fxaa or none (renderer.antialias)
     int displayLayer = -1;           // layer of a texture view to show alone, -1: all its layers tiled
     ShadowParams shadow;             // shadow.*
     DirectLightParams lights;        // lights.emitterSamples, lights.seed
@@ -104,10 +105,13 @@ private:
     GBufferPass mGBuffer;
     FullscreenPass mDirect;
     FullscreenPass mToneMap;
+    FullscreenPass mAntialias;        // passes/fxaa.frag (renderer.antialias)
     gl::RenderTarget mDirectTarget;   // direct light + emission, RGBA32F
     gl::RenderTarget mIndirectTarget; // the technique's indirect light, RGBA32F
     gl::RenderTarget mOutput;         // colour 0 display RGBA8 (sRGB bytes), colour 1 radiance RGBA32F
     gl::RenderTarget mInset;          // the same for renderInset()
+    gl::RenderTarget mAntialiased;    // RGBA8: FXAA's output, copied back into the output's display
+    gl::Sampler mAntialiasSampler;    // bilinear, clamped: FXAA's lookups between pixels
     gl::Texture mDisplayView;         // texture view of what renderer.display shows (re-made each frame)
     gl::Texture mNoDisplayView;       // bound to the view's unit while the display shows a frame image
     gl::Buffer mFrameUniforms;

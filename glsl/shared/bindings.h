@@ -78,6 +78,7 @@ VPLGI_CONST int kUnitISM = 22; // imperfect shadow maps: distance [m] (sampler2D
 VPLGI_CONST int kUnitImportanceMips = 23; // the PDF of BRSMs with box mips (passes/vsgl_generate.comp: vsgl.footprint = cell)
 VPLGI_CONST int kUnitGBufferSurfaceNormals = 24; // G-buffer: octahedral geometric (xy) and interpolated (zw) normals
 VPLGI_CONST int kUnitBilateralGuide = 25; // per pixel: the filter's normal (xyz) and in-plane scale (w) (passes/bilateral_guide.frag)
+VPLGI_CONST int kUnitAntialiasInput = 26; // the tone-mapped display that passes/fxaa.frag antialiases
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target
