@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -643,7 +644,6 @@ private:
             fail(what, "accessor " + std::to_string(index) + " does not exist");
         const tinygltf::Accessor& acc = mModel.accessors[static_cast<std::size_t>(index)];
         const std::string where = what + ": accessor " + std::to_string(index);
-        if (acc.sparse.isSparse) throw Error(mPath + ": " + where + ": sparse accessors are not supported");
 
         AccessorView view;
         view.count = acc.count;
@@ -709,6 +709,60 @@ private:
         return view;
     }
 
+    // A bounds-checked slice of a bufferView: `count` elements of `elementSize` bytes, tightly packed,
+    // from byteOffset (sparse indices and values have no byteStride).
+    const unsigned char* packedData(int bufferView, std::size_t byteOffset, std::size_t count, std::size_t elementSize,
+                                    const std::string& where) const
+    {
+        if (bufferView < 0 || static_cast<std::size_t>(bufferView) >= mModel.bufferViews.size())
+            throw Error(mPath + ": " + where + ": bufferView " + std::to_string(bufferView) + " does not exist");
+        const tinygltf::BufferView& bv = mModel.bufferViews[static_cast<std::size_t>(bufferView)];
+        if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= mModel.buffers.size())
+            throw Error(mPath + ": " + where + ": buffer " + std::to_string(bv.buffer) + " does not exist");
+        const std::vector<unsigned char>& buffer = mModel.buffers[static_cast<std::size_t>(bv.buffer)].data;
+        const bool fits = bv.byteOffset <= buffer.size() && bv.byteLength <= buffer.size() - bv.byteOffset &&
+                          byteOffset <= bv.byteLength && count <= (bv.byteLength - byteOffset) / elementSize;
+        if (!fits) throw Error(mPath + ": " + where + ": data extends past the end of its buffer");
+        return buffer.data() + bv.byteOffset + byteOffset;
+    }
+
+    // Sparse substitution (glTF 2.0 section 3.6.2.3): the elements `sparse.indices` names (strictly
+    // increasing, each below the accessor's count) take the tightly packed `sparse.values`, on top of
+    // the bufferView's data or of zeros. Calls set(element, value bytes) for each.
+    void applySparse(int accessor, const AccessorView& view,
+                     const std::function<void(std::size_t, const unsigned char*)>& set) const
+    {
+        const tinygltf::Accessor& acc = mModel.accessors[static_cast<std::size_t>(accessor)];
+        if (!acc.sparse.isSparse) return;
+        const std::string where = "accessor " + std::to_string(accessor) + ": sparse";
+        if (acc.sparse.count < 1 || static_cast<std::size_t>(acc.sparse.count) > view.count)
+            throw Error(mPath + ": " + where + ": count " + std::to_string(acc.sparse.count) + " is not in [1, " +
+                        std::to_string(view.count) + "]");
+        const auto count = static_cast<std::size_t>(acc.sparse.count);
+        const int indexType = acc.sparse.indices.componentType;
+        if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            throw Error(mPath + ": " + where + ": indices must be unsigned 8, 16 or 32 bit integers");
+        const auto indexSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(indexType));
+        const auto valueSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(view.componentType)) *
+                               static_cast<std::size_t>(view.components);
+        const unsigned char* indices = packedData(acc.sparse.indices.bufferView,
+                                                  static_cast<std::size_t>(std::max(0, acc.sparse.indices.byteOffset)),
+                                                  count, indexSize, where + " indices");
+        const unsigned char* values = packedData(acc.sparse.values.bufferView,
+                                                 static_cast<std::size_t>(std::max(0, acc.sparse.values.byteOffset)),
+                                                 count, valueSize, where + " values");
+        std::size_t previous = 0;
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::size_t element = readComponentAsIndex(indices + k * indexSize, indexType);
+            if (element >= view.count || (k > 0 && element <= previous))
+                throw Error(mPath + ": " + where + ": index " + std::to_string(element) + " (entry " +
+                            std::to_string(k) + ") is not increasing and below " + std::to_string(view.count));
+            set(element, values + k * valueSize);
+            previous = element;
+        }
+    }
+
     // Reads count x components floats, converting integer components (normalized or not).
     std::vector<float> readFloats(int accessor, int components, const std::string& what) const
     {
@@ -717,11 +771,17 @@ private:
             fail(what, "accessor " + std::to_string(accessor) + " has " + std::to_string(view.components) +
                            " components, expected " + std::to_string(components));
         std::vector<float> out(view.count * static_cast<std::size_t>(components), 0.0f);
-        if (view.data == nullptr) return out;
-        for (std::size_t i = 0; i < view.count; ++i)
+        if (view.data != nullptr)
+            for (std::size_t i = 0; i < view.count; ++i)
+                for (int c = 0; c < components; ++c)
+                    out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
+                        readComponentAsFloat(view.element(i, c), view.componentType, view.normalized);
+        const auto componentSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(view.componentType));
+        applySparse(accessor, view, [&](std::size_t i, const unsigned char* value) {
             for (int c = 0; c < components; ++c)
-                out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
-                    readComponentAsFloat(view.element(i, c), view.componentType, view.normalized);
+                out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = readComponentAsFloat(
+                    value + static_cast<std::size_t>(c) * componentSize, view.componentType, view.normalized);
+        });
         // Refused rather than repaired: a NaN or Inf position or normal has no sensible
         // replacement, and one such value poisons bounds, BVHs, filters and every pixel it reaches.
         for (std::size_t i = 0; i < out.size(); ++i) {
@@ -743,9 +803,11 @@ private:
             view.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
             fail(what, "indices must be unsigned 8, 16 or 32 bit integers");
         std::vector<std::uint32_t> out(view.count, 0u);
-        if (view.data == nullptr) return out;
-        for (std::size_t i = 0; i < view.count; ++i)
-            out[i] = readComponentAsIndex(view.element(i, 0), view.componentType);
+        if (view.data != nullptr)
+            for (std::size_t i = 0; i < view.count; ++i)
+                out[i] = readComponentAsIndex(view.element(i, 0), view.componentType);
+        applySparse(accessor, view,
+                    [&](std::size_t i, const unsigned char* value) { out[i] = readComponentAsIndex(value, view.componentType); });
         return out;
     }
 

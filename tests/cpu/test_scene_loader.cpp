@@ -445,6 +445,46 @@ TEST_CASE("glTF: materials with emissive strength and specular plus textures and
           std::vector<std::uint8_t>{254, 254, 254, 128});
 }
 
+TEST_CASE("glTF: sparse accessors replace elements of a bufferView or of zeros, for attributes and indices",
+          "[scene_loader]")
+{
+    TempDir dir;
+    GltfBuilder b;
+    // Positions: a bufferView with vertex 2 at (0, 1, 0), replaced by (0, 2, 0).
+    const int positions = b.addData<float>({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, kFloat, "VEC3", 3);
+    b.doc["accessors"][positions]["sparse"] = {
+        {"count", 1},
+        {"indices", {{"bufferView", b.addView(bytesOf(std::vector<std::uint8_t>{2, 0, 0, 0}))}, {"componentType", 5121}}},
+        {"values", {{"bufferView", b.addView(bytesOf(std::vector<float>{0, 2, 0}))}}}};
+    // Normals: no bufferView (zeros), every element set by sparse values in normalized bytes.
+    const int normals = b.addAccessor(-1, 5120, 4, "VEC3", 0, true);
+    b.doc["accessors"][normals].erase("bufferView");
+    b.doc["accessors"][normals]["sparse"] = {
+        {"count", 4},
+        {"indices", {{"bufferView", b.addView(bytesOf(std::vector<std::uint32_t>{0, 1, 2, 3}))}, {"componentType", 5125}}},
+        {"values", {{"bufferView", b.addView(bytesOf(std::vector<std::int8_t>{0, 0, 127, 0, 0, 127, 0, 0, 127, 0, 0, 127}))}}}};
+    // Indices 0 1 2 0 0 0 with the second triangle made (1, 3, 2) by sparse entries 4 and 5, at a
+    // byteOffset into the values' view.
+    const int indices = b.addData<std::uint16_t>({0, 1, 2, 1, 0, 0}, kUShort, "SCALAR", 1);
+    b.doc["accessors"][indices]["sparse"] = {
+        {"count", 2},
+        {"indices", {{"bufferView", b.addView(bytesOf(std::vector<std::uint16_t>{4, 5}))}, {"componentType", kUShort}}},
+        {"values", {{"bufferView", b.addView(bytesOf(std::vector<std::uint16_t>{9, 3, 2}))}, {"byteOffset", 2}}}};
+    b.append("meshes", {{"primitives", json::array({{{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}},
+                                                     {"indices", indices}}})}});
+    b.append("nodes", {{"mesh", 0}});
+    const std::string path = dir.file("sparse.gltf");
+    writeFile(path, b.gltfWithDataUri());
+    const vplgi::Scene scene = vplgi::loadGltf(path);
+    REQUIRE(scene.meshes.size() == 1);
+    const vplgi::Mesh& mesh = scene.meshes[0];
+    REQUIRE(mesh.vertices.size() == 4);
+    CHECK(mesh.vertices[2].position == glm::vec3(0, 2, 0));
+    CHECK(mesh.vertices[3].position == glm::vec3(1, 1, 0));
+    for (const vplgi::Vertex& v : mesh.vertices) CHECK(near(v.normal, {0, 0, 1}));
+    CHECK(mesh.indices == std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2});
+}
+
 TEST_CASE("glTF: alphaMode MASK keeps its cutoff, BLEND becomes MASK at 0.5 with one warning, others are refused",
           "[scene_loader][alpha]")
 {
@@ -666,17 +706,26 @@ TEST_CASE("glTF: bad input is rejected with an Error naming the file", "[scene_l
         writeFile(path, b.gltfWithDataUri());
         CHECK_THAT(errorOf([&] { vplgi::loadGltf(path); }), Contains("mode POINTS is not supported"));
     }
-    SECTION("sparse accessors")
+    SECTION("sparse indices not increasing, past the count, or values past their buffer")
     {
-        GltfBuilder b;
-        addTriangleMesh(b);
-        b.doc["accessors"][0]["sparse"] = {{"count", 1},
-                                           {"indices", {{"bufferView", 0}, {"componentType", kUShort}}},
-                                           {"values", {{"bufferView", 1}}}};
-        b.append("nodes", {{"mesh", 0}});
-        const std::string path = dir.file("sparse.gltf");
-        writeFile(path, b.gltfWithDataUri());
-        CHECK_THAT(errorOf([&] { vplgi::loadGltf(path); }), Contains("sparse accessors are not supported"));
+        for (const auto& [indices, valuesOffset, message] :
+             std::vector<std::tuple<std::vector<std::uint16_t>, int, std::string>>{
+                 {{2, 1}, 0, "accessor 0: sparse: index 1 (entry 1) is not increasing and below 3"},
+                 {{1, 3}, 0, "accessor 0: sparse: index 3 (entry 1) is not increasing and below 3"},
+                 {{1, 2}, 4, "accessor 0: sparse values: data extends past the end of its buffer"}}) {
+            GltfBuilder b;
+            addTriangleMesh(b);
+            const int indexView = b.addView(bytesOf(indices));
+            const int valueView = b.addView(bytesOf(std::vector<float>{0, 2, 0, 0, 3, 0}));
+            b.doc["accessors"][0]["sparse"] = {
+                {"count", 2},
+                {"indices", {{"bufferView", indexView}, {"componentType", kUShort}}},
+                {"values", {{"bufferView", valueView}, {"byteOffset", valuesOffset}}}};
+            b.append("nodes", {{"mesh", 0}});
+            const std::string path = dir.file("sparse.gltf");
+            writeFile(path, b.gltfWithDataUri());
+            CHECK(errorOf([&] { vplgi::loadGltf(path); }) == path + ": " + message);
+        }
     }
     SECTION("accessor larger than its buffer")
     {
