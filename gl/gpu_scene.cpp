@@ -72,6 +72,8 @@ GpuScene::GpuScene(const Scene& scene) : mScene(scene)
         attribute(1, 3, offsetof(Vertex, normal));
         attribute(2, 2, offsetof(Vertex, texcoord));
         attribute(3, 4, offsetof(Vertex, tangent));
+        attribute(4, 2, offsetof(Vertex, texcoord1));
+        attribute(5, 4, offsetof(Vertex, color));
         mMeshes.push_back(std::move(buffers));
     }
     const std::uint8_t white[4] = {255, 255, 255, 255};
@@ -121,6 +123,24 @@ const gl::Texture& GpuScene::imageTexture(int image, bool srgb) const
         .first->second;
 }
 
+void GpuScene::setTextureUVs(const gl::Program& program, const Material& m)
+{
+    // glsl/lib/material_uv.glsl: per texture unit 0-3, its KHR_texture_transform and UV set.
+    const TextureRef* refs[4] = {};
+    refs[shared::kUnitBaseColor] = &m.baseColorTexture;
+    refs[shared::kUnitMetallicRoughness] = &m.metallicRoughnessTexture;
+    refs[shared::kUnitEmission] = &m.emissionTexture;
+    refs[shared::kUnitNormalMap] = &m.normalTexture;
+    glm::mat3 transforms[4];
+    glm::ivec4 sets(0);
+    for (int unit = 0; unit < 4; ++unit) {
+        transforms[unit] = refs[unit]->uvTransform();
+        sets[unit] = refs[unit]->texCoord;
+    }
+    glProgramUniformMatrix3fv(program.id(), program.uniformLocation("uTextureTransform"), 4, GL_FALSE, &transforms[0][0][0]);
+    glProgramUniform4i(program.id(), program.uniformLocation("uTextureSet"), sets.x, sets.y, sets.z, sets.w);
+}
+
 void GpuScene::bindMaterial(const gl::Program& program, const Material& m, bool hasTangents) const
 {
     using namespace shared;
@@ -135,6 +155,7 @@ void GpuScene::bindMaterial(const gl::Program& program, const Material& m, bool 
     program.set("uBaseColor", m.baseColor);
     program.set("uMaterial", glm::vec4(m.metallic, m.roughness, m.specular, m.normalScale));
     program.set("uEmission", glm::vec4(m.emission, 0.0f));
+    setTextureUVs(program, m);
     glProgramUniform4i(program.id(), program.uniformLocation("uTextures"),
                        m.normalTexture.valid() && hasTangents ? 1 : 0, m.doubleSided ? 1 : 0, 0, 0);
 }
@@ -160,6 +181,7 @@ void GpuScene::draw(const SceneProgram& programs, Bind bind, GLsizei instanceCou
                                                           : mWhite.id());
             glBindSampler(shared::kUnitBaseColor, mMaskSampler.id());
             program.set("uAlphaMask", glm::vec2(material.alphaCutoff, material.baseColor.a));
+            if (bind == Bind::Geometry) setTextureUVs(program, material);
         }
         if (bind == Bind::GeometryAndMaterial) {
             program.set("uNormalFromObject", glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject))));

@@ -69,6 +69,7 @@ private:
     };
     const gl::Texture& imageTexture(int image, bool srgb) const;
     void bindMaterial(const gl::Program& program, const Material& material, bool hasTangents) const;
+    static void setTextureUVs(const gl::Program& program, const Material& material);
 
     const Scene& mScene;
     std::vector<MeshBuffers> mMeshes;

@@ -61,6 +61,8 @@ void checkTexture(const Scene& scene, const TextureRef& ref, const std::string& 
 {
     require(ref.image < static_cast<int>(scene.images.size()),
             what + ": image index " + std::to_string(ref.image) + " out of range");
+    require(ref.texCoord == 0 || ref.texCoord == 1, what + ": texture coordinate set " + std::to_string(ref.texCoord) +
+                                                        " is not 0 or 1");
 }
 
 } // namespace
@@ -155,7 +157,7 @@ void generateNormals(Mesh& mesh)
     }
 }
 
-void generateTangents(Mesh& mesh)
+void generateTangents(Mesh& mesh, const TextureRef& normalTexture)
 {
     std::vector<glm::vec3> tan(mesh.vertices.size(), glm::vec3(0.0f));
     std::vector<glm::vec3> bitan(mesh.vertices.size(), glm::vec3(0.0f));
@@ -163,7 +165,10 @@ void generateTangents(Mesh& mesh)
         std::uint32_t i0 = mesh.indices[t], i1 = mesh.indices[t + 1], i2 = mesh.indices[t + 2];
         const Vertex &a = mesh.vertices[i0], &b = mesh.vertices[i1], &c = mesh.vertices[i2];
         glm::vec3 e1 = b.position - a.position, e2 = c.position - a.position;
-        glm::vec2 d1 = b.texcoord - a.texcoord, d2 = c.texcoord - a.texcoord;
+        // In the normal texture's UVs (its set and transform), so that a rotated or scaled normal map
+        // gets the frame it was painted in.
+        const glm::vec2 ta = normalTexture.uv(a.texcoord, a.texcoord1);
+        glm::vec2 d1 = normalTexture.uv(b.texcoord, b.texcoord1) - ta, d2 = normalTexture.uv(c.texcoord, c.texcoord1) - ta;
         float det = d1.x * d2.y - d2.x * d1.y;
         if (std::abs(det) < 1e-20f) continue;
         float r = 1.0f / det;

@@ -11,6 +11,7 @@
 //    (glTF nodes flattened, node transforms kept as worldFromObject).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,8 +23,10 @@ namespace vplgi {
 struct Vertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};
-    glm::vec2 texcoord{0.0f};
+    glm::vec2 texcoord{0.0f};                  // TEXCOORD_0
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f}; // xyz tangent, w = bitangent sign (glTF convention)
+    glm::vec2 texcoord1{0.0f};                 // TEXCOORD_1
+    glm::vec4 color{1.0f};                     // COLOR_0 (linear RGBA), multiplies the base colour
 };
 
 // 8-bit RGBA image, rows top to bottom (as glTF/stb deliver them).
@@ -34,10 +37,26 @@ struct Image {
     std::vector<std::uint8_t> rgba; // width * height * 4
 };
 
-// Texture reference: an image index (-1 = none) and the UV set (only set 0 is supported).
+// Texture reference: an image index (-1 = none), the UV set it reads (TEXCOORD_0 or _1) and its
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, R turning the UVs by `rotation`
+// radians from +u towards -v (counter-clockwise with v down, the extension's example).
 struct TextureRef {
     int image = -1;
+    int texCoord = 0;
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;
+    glm::vec2 scale{1.0f};
     bool valid() const { return image >= 0; }
+    // The 3x3 affine matrix of the transform (column-major, applied to (u, v, 1)).
+    glm::mat3 uvTransform() const
+    {
+        const float c = std::cos(rotation), s = std::sin(rotation);
+        return glm::mat3(c * scale.x, -s * scale.x, 0.0f, s * scale.y, c * scale.y, 0.0f, offset.x, offset.y, 1.0f);
+    }
+    glm::vec2 uv(const glm::vec2& uv0, const glm::vec2& uv1) const
+    {
+        return glm::vec2(uvTransform() * glm::vec3(texCoord == 0 ? uv0 : uv1, 1.0f));
+    }
 };
 
 // glTF 2.0 metallic-roughness material plus KHR_materials_specular's factor and emission.
@@ -159,7 +178,7 @@ struct Scene {
 // Fills smooth per-vertex normals (area-weighted face normals) for a mesh without normals.
 void generateNormals(Mesh& mesh);
 // Fills per-vertex tangents from texcoords (needed when the material has a normal map).
-void generateTangents(Mesh& mesh);
+void generateTangents(Mesh& mesh, const TextureRef& normalTexture = TextureRef{});
 // Camera placed to see the whole scene bounds (used when a scene has no camera).
 Camera makeDefaultCamera(const AABB& bounds);
 

@@ -154,6 +154,7 @@ const std::set<std::string>& supportedRequiredExtensions()
     static const std::set<std::string> kSupported = {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_specular",
         "KHR_mesh_quantization", // integer attributes are converted generically below
+        "KHR_texture_transform",
     };
     return kSupported;
 }
@@ -546,13 +547,47 @@ private:
         return out;
     }
 
-    TextureRef textureRef(int textureIndex, int texCoord, const std::string& what) const
+    // A textureInfo (or normalTextureInfo): the texture, its UV set and its KHR_texture_transform.
+    template <typename Info>
+    TextureRef textureRef(const Info& info, const std::string& what) const
     {
         TextureRef ref;
+        const int textureIndex = info.index;
+        int texCoord = info.texCoord;
         if (textureIndex < 0) return ref;
         if (static_cast<std::size_t>(textureIndex) >= mModel.textures.size())
             fail(what, "texture " + std::to_string(textureIndex) + " does not exist");
-        if (texCoord != 0) fail(what, "uses TEXCOORD_" + std::to_string(texCoord) + " (only TEXCOORD_0 is supported)");
+        auto transform = info.extensions.find("KHR_texture_transform");
+        if (transform != info.extensions.end()) {
+            const tinygltf::Value& t = transform->second;
+            if (!t.IsObject()) fail(what, "KHR_texture_transform must be an object");
+            auto pair = [&](const char* key, glm::vec2 fallback) {
+                if (!t.Has(key)) return fallback;
+                const tinygltf::Value& v = t.Get(key);
+                if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+                    fail(what, std::string("KHR_texture_transform ") + key + " must be 2 numbers");
+                const glm::vec2 out(static_cast<float>(v.Get(0).GetNumberAsDouble()),
+                                    static_cast<float>(v.Get(1).GetNumberAsDouble()));
+                if (!std::isfinite(out.x) || !std::isfinite(out.y))
+                    fail(what, std::string("KHR_texture_transform ") + key + " must be finite");
+                return out;
+            };
+            ref.offset = pair("offset", glm::vec2(0.0f));
+            ref.scale = pair("scale", glm::vec2(1.0f));
+            if (t.Has("rotation")) {
+                const tinygltf::Value& r = t.Get("rotation");
+                if (!r.IsNumber() || !std::isfinite(r.GetNumberAsDouble()))
+                    fail(what, "KHR_texture_transform rotation must be a finite number");
+                ref.rotation = static_cast<float>(r.GetNumberAsDouble());
+            }
+            if (t.Has("texCoord")) {
+                if (!t.Get("texCoord").IsInt()) fail(what, "KHR_texture_transform texCoord must be an integer");
+                texCoord = t.Get("texCoord").GetNumberAsInt();
+            }
+        }
+        if (texCoord != 0 && texCoord != 1)
+            fail(what, "uses TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 and TEXCOORD_1 are supported)");
+        ref.texCoord = texCoord;
         const int source = mModel.textures[static_cast<std::size_t>(textureIndex)].source;
         if (source < 0) return ref; // no image we can decode: treated as untextured
         if (static_cast<std::size_t>(source) >= mModel.images.size())
@@ -584,11 +619,10 @@ private:
         if (pbr.baseColorFactor.size() != 4) fail(what, "baseColorFactor must have 4 numbers");
         m.baseColor = glm::vec4(static_cast<float>(pbr.baseColorFactor[0]), static_cast<float>(pbr.baseColorFactor[1]),
                                 static_cast<float>(pbr.baseColorFactor[2]), static_cast<float>(pbr.baseColorFactor[3]));
-        m.baseColorTexture = textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, what);
+        m.baseColorTexture = textureRef(pbr.baseColorTexture, what);
         m.metallic = static_cast<float>(pbr.metallicFactor);
         m.roughness = static_cast<float>(pbr.roughnessFactor);
-        m.metallicRoughnessTexture =
-            textureRef(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, what);
+        m.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture, what);
 
         glm::vec3 emissive(0.0f);
         if (!src.emissiveFactor.empty()) {
@@ -600,12 +634,12 @@ private:
             extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0, what);
         if (!(strength >= 0.0)) fail(what, "emissiveStrength must be >= 0");
         m.emission = emissive * static_cast<float>(strength);
-        m.emissionTexture = textureRef(src.emissiveTexture.index, src.emissiveTexture.texCoord, what);
+        m.emissionTexture = textureRef(src.emissiveTexture, what);
 
         // Only the scalar factor of KHR_materials_specular; specularColor and its textures are ignored.
         m.specular =
             static_cast<float>(extensionNumber(src.extensions, "KHR_materials_specular", "specularFactor", 1.0, what));
-        m.normalTexture = textureRef(src.normalTexture.index, src.normalTexture.texCoord, what);
+        m.normalTexture = textureRef(src.normalTexture, what);
         m.normalScale = static_cast<float>(src.normalTexture.scale);
         m.doubleSided = src.doubleSided;
         // alphaMode (glTF 2.0 3.9.4): tinygltf leaves the string as written and alphaCutoff at 0.5 when
@@ -858,6 +892,22 @@ private:
             for (std::size_t i = 0; i < vertexCount; ++i)
                 mesh.vertices[i].texcoord = glm::vec2(t[2 * i], t[2 * i + 1]);
         }
+        if (attribute("TEXCOORD_1") >= 0) {
+            const std::vector<float> t = readAttribute("TEXCOORD_1", 2);
+            for (std::size_t i = 0; i < vertexCount; ++i)
+                mesh.vertices[i].texcoord1 = glm::vec2(t[2 * i], t[2 * i + 1]);
+        }
+        if (attribute("COLOR_0") >= 0) {
+            // VEC3 or VEC4 (float, or normalized unsigned byte or short), linear (glTF 3.7.2.1).
+            const int colorAccessor = attribute("COLOR_0");
+            const int components = viewAccessor(colorAccessor, what + ": COLOR_0").components;
+            if (components != 3 && components != 4) fail(what, "COLOR_0 must be VEC3 or VEC4");
+            const std::vector<float> c = readAttribute("COLOR_0", components);
+            for (std::size_t i = 0; i < vertexCount; ++i) {
+                const float* p = &c[i * static_cast<std::size_t>(components)];
+                mesh.vertices[i].color = glm::vec4(p[0], p[1], p[2], components == 4 ? p[3] : 1.0f);
+            }
+        }
         if (attribute("TANGENT") >= 0) {
             const std::vector<float> t = readAttribute("TANGENT", 4);
             for (std::size_t i = 0; i < vertexCount; ++i)
@@ -926,8 +976,8 @@ private:
         } else {
             mesh.material = defaultMaterial();
         }
-        if (!mesh.hasTangents && mScene.materials[static_cast<std::size_t>(mesh.material)].normalTexture.valid())
-            generateTangents(mesh);
+        const TextureRef& normalTexture = mScene.materials[static_cast<std::size_t>(mesh.material)].normalTexture;
+        if (!mesh.hasTangents && normalTexture.valid()) generateTangents(mesh, normalTexture);
         return mesh;
     }
 

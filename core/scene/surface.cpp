@@ -41,21 +41,26 @@ glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb)
     return glm::mix(a, b, fy);
 }
 
-glm::vec2 texcoordAt(const Mesh& mesh, int triangle, glm::vec2 barycentric)
-{
-    const std::size_t first = 3 * static_cast<std::size_t>(triangle);
-    return (1.0f - barycentric.x - barycentric.y) * mesh.vertices[mesh.indices[first]].texcoord +
-           barycentric.x * mesh.vertices[mesh.indices[first + 1]].texcoord +
-           barycentric.y * mesh.vertices[mesh.indices[first + 2]].texcoord;
-}
-
-bool alphaMaskKeeps(const Scene& scene, const Material& m, glm::vec2 uv)
+bool alphaMaskKeeps(const Scene& scene, const Material& m, glm::vec2 baseColorUV, float vertexAlpha)
 {
     if (!m.isMasked()) return true;
-    float alpha = m.baseColor.a;
+    float alpha = m.baseColor.a * vertexAlpha;
     if (m.baseColorTexture.valid())
-        alpha *= sampleImage(scene.images[static_cast<std::size_t>(m.baseColorTexture.image)], uv, false).a;
+        alpha *= sampleImage(scene.images[static_cast<std::size_t>(m.baseColorTexture.image)], baseColorUV, false).a;
     return shared::alphaMaskKeeps(alpha, m.alphaCutoff);
+}
+
+bool alphaMaskKeeps(const Scene& scene, const Material& m, const Mesh& mesh, int triangle, glm::vec2 barycentric)
+{
+    if (!m.isMasked()) return true;
+    const std::size_t first = 3 * static_cast<std::size_t>(triangle);
+    const Vertex& a = mesh.vertices[mesh.indices[first]];
+    const Vertex& b = mesh.vertices[mesh.indices[first + 1]];
+    const Vertex& c = mesh.vertices[mesh.indices[first + 2]];
+    const float w0 = 1.0f - barycentric.x - barycentric.y, w1 = barycentric.x, w2 = barycentric.y;
+    const glm::vec2 uv0 = w0 * a.texcoord + w1 * b.texcoord + w2 * c.texcoord;
+    const glm::vec2 uv1 = w0 * a.texcoord1 + w1 * b.texcoord1 + w2 * c.texcoord1;
+    return alphaMaskKeeps(scene, m, m.baseColorTexture.uv(uv0, uv1), w0 * a.color.a + w1 * b.color.a + w2 * c.color.a);
 }
 
 float alphaCoverage(const Scene& scene, const Material& m)
@@ -95,9 +100,27 @@ UntexturedMaterials computeUntexturedMaterials(const Scene& scene)
             }
         return glm::vec4(sum / std::max(1.0, count));
     };
+    // COLOR_0: each material's mean vertex colour, weighted by object-space triangle area (exact
+    // for instances without non-uniform scale).
+    std::vector<glm::dvec3> colorSum(scene.materials.size(), glm::dvec3(0.0));
+    std::vector<double> areaSum(scene.materials.size(), 0.0);
+    for (const Mesh& mesh : scene.meshes) {
+        const auto k = static_cast<std::size_t>(mesh.material);
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            const Vertex& a = mesh.vertices[mesh.indices[t]];
+            const Vertex& b = mesh.vertices[mesh.indices[t + 1]];
+            const Vertex& c = mesh.vertices[mesh.indices[t + 2]];
+            const double area = 0.5 * glm::length(glm::cross(glm::dvec3(b.position - a.position),
+                                                              glm::dvec3(c.position - a.position)));
+            colorSum[k] += area * glm::dvec3(a.color + b.color + c.color) / 3.0;
+            areaSum[k] += area;
+        }
+    }
     for (const Material& m : scene.materials) {
         current = &m;
+        const auto k = static_cast<std::size_t>(&m - scene.materials.data());
         glm::vec3 base(m.baseColor);
+        if (areaSum[k] > 0.0) base *= glm::vec3(colorSum[k] / areaSum[k]);
         if (m.baseColorTexture.valid()) base *= glm::vec3(mean(m.baseColorTexture, true));
         float metallic = m.metallic, roughness = m.roughness;
         if (m.metallicRoughnessTexture.valid()) {
@@ -130,6 +153,11 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
     glm::vec3 pObject = w0 * v0.position + w1 * v1.position + w2 * v2.position;
     s.position = glm::vec3(instance.worldFromObject * glm::vec4(pObject, 1.0f));
     s.texcoord = w0 * v0.texcoord + w1 * v1.texcoord + w2 * v2.texcoord;
+    s.texcoord1 = w0 * v0.texcoord1 + w1 * v1.texcoord1 + w2 * v2.texcoord1;
+    const glm::vec4 vertexColor = w0 * v0.color + w1 * v1.color + w2 * v2.color;
+    auto sample = [&](const TextureRef& ref, bool srgb) {
+        return sampleImage(scene.images[static_cast<std::size_t>(ref.image)], ref.uv(s.texcoord, s.texcoord1), srgb);
+    };
     s.geometricNormal = glm::normalize(hit.geometricNormal);
     glm::vec3 n = glm::normalize(normalFromObject * (w0 * v0.normal + w1 * v1.normal + w2 * v2.normal));
 
@@ -138,7 +166,7 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
         glm::vec3 t = glm::normalize(glm::mat3(instance.worldFromObject) * glm::vec3(t4));
         t = glm::normalize(t - n * glm::dot(n, t));
         glm::vec3 b = glm::cross(n, t) * (t4.w < 0.0f ? -1.0f : 1.0f);
-        glm::vec3 tn = glm::vec3(sampleImage(scene.images[m.normalTexture.image], s.texcoord, false)) * 2.0f - 1.0f;
+        glm::vec3 tn = glm::vec3(sample(m.normalTexture, false)) * 2.0f - 1.0f;
         tn.x *= m.normalScale;
         tn.y *= m.normalScale;
         n = glm::normalize(t * tn.x + b * tn.y + n * tn.z);
@@ -158,11 +186,11 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
         s.material.metallic = untextured->metallic[index];
         s.material.roughness = untextured->roughness[index];
     } else {
-        glm::vec4 base = m.baseColor;
-        if (m.baseColorTexture.valid()) base *= sampleImage(scene.images[m.baseColorTexture.image], s.texcoord, true);
+        glm::vec4 base = m.baseColor * vertexColor;
+        if (m.baseColorTexture.valid()) base *= sample(m.baseColorTexture, true);
         float metallic = m.metallic, roughness = m.roughness;
         if (m.metallicRoughnessTexture.valid()) {
-            glm::vec4 mr = sampleImage(scene.images[m.metallicRoughnessTexture.image], s.texcoord, false);
+            glm::vec4 mr = sample(m.metallicRoughnessTexture, false);
             roughness *= mr.g;
             metallic *= mr.b;
         }
@@ -173,7 +201,7 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
     s.material.specular = m.specular;
     s.emission = m.emission;
     if (m.emissionTexture.valid())
-        s.emission *= glm::vec3(sampleImage(scene.images[m.emissionTexture.image], s.texcoord, true));
+        s.emission *= glm::vec3(sample(m.emissionTexture, true));
     return s;
 }
 

@@ -17,7 +17,8 @@ struct SurfacePoint {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};          // shading normal (normal-mapped), unit
     glm::vec3 geometricNormal{0.0f, 1.0f, 0.0f}; // unit, same side as `normal`
-    glm::vec2 texcoord{0.0f};
+    glm::vec2 texcoord{0.0f};  // TEXCOORD_0
+    glm::vec2 texcoord1{0.0f}; // TEXCOORD_1
     shared::SurfaceMaterial material{};
     glm::vec3 emission{0.0f};                    // emitted radiance [W/(m^2 sr)]
     int materialIndex = -1;
@@ -29,6 +30,8 @@ struct SurfacePoint {
 // colour factor times the mean of its base-colour texture (sRGB-decoded, as GL filters it), and the
 // metallic and roughness factors times the means of their texture channels. Normal maps are off.
 // Alpha-masked materials average over the texels their mask keeps (rays never see the others).
+// COLOR_0 enters as the material's area-weighted mean vertex colour; a texture's mean is over the
+// whole image, whatever part of it KHR_texture_transform maps onto the surface.
 struct UntexturedMaterials {
     std::vector<glm::vec3> baseColor; // per material, linear RGB
     std::vector<float> metallic;
@@ -45,12 +48,13 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
 // Bilinear, repeat-wrapped texture lookup; sRGB-decoded when `srgb`. Returns RGBA in [0,1].
 glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb);
 
-// The texture coordinate on triangle `triangle` of `mesh` at Embree barycentrics (u, v).
-glm::vec2 texcoordAt(const Mesh& mesh, int triangle, glm::vec2 barycentric);
-// Whether a point of material `m` at `uv` is present (glsl/shared/alpha_mask.h): always for opaque
-// materials; for masked ones where the base colour's alpha (factor times texture, bilinear) is >= the
-// cutoff.
-bool alphaMaskKeeps(const Scene& scene, const Material& m, glm::vec2 uv);
+// Whether a point of material `m` is present (glsl/shared/alpha_mask.h): always for opaque
+// materials; for masked ones where the base colour's alpha (factor times COLOR_0's alpha
+// `vertexAlpha` times the texture's at `baseColorUV`, its set and transform applied, bilinear) is
+// >= the cutoff.
+bool alphaMaskKeeps(const Scene& scene, const Material& m, glm::vec2 baseColorUV, float vertexAlpha = 1.0f);
+// The same at Embree barycentrics (u, v) on triangle `triangle` of `mesh`, which has material `m`.
+bool alphaMaskKeeps(const Scene& scene, const Material& m, const Mesh& mesh, int triangle, glm::vec2 barycentric);
 // The fraction of a material's texture area that its alpha mask keeps (1 for opaque materials): the
 // fraction of texels kept, i.e. the mask of the nearest-texel reconstruction (bilinear filtering moves
 // the outline by under a texel). Not in any paper: what the untextured material tables and LightSkin's

@@ -15,7 +15,8 @@ namespace {
 struct WorldTriangle {
     glm::vec3 p0, p1, p2;
     const Material* masked = nullptr; // an alpha-masked material, else nullptr
-    glm::vec2 t0{0.0f}, t1{0.0f}, t2{0.0f}; // texture coordinates (masked only)
+    const Mesh* mesh = nullptr;       // and the triangle (masked only)
+    int triangle = 0;
 };
 
 // Draws after which a point that keeps landing where alpha masks cut the surface gives up.
@@ -42,9 +43,8 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
             const Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
             if (material.isMasked()) {
                 tri.masked = &material;
-                tri.t0 = mesh.vertices[mesh.indices[t]].texcoord;
-                tri.t1 = mesh.vertices[mesh.indices[t + 1]].texcoord;
-                tri.t2 = mesh.vertices[mesh.indices[t + 2]].texcoord;
+                tri.mesh = &mesh;
+                tri.triangle = static_cast<int>(t / 3);
             }
             points.totalArea += area;
             triangles.push_back(tri);
@@ -93,7 +93,7 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
         // over the kept area; the block's lattice loses those points' places).
         const WorldTriangle* at = &tri;
         auto cut = [&](const WorldTriangle& t, float c1, float c2) {
-            return t.masked && !alphaMaskKeeps(scene, *t.masked, (1.0f - c1 - c2) * t.t0 + c1 * t.t1 + c2 * t.t2);
+            return t.masked && !alphaMaskKeeps(scene, *t.masked, *t.mesh, t.triangle, glm::vec2(c1, c2));
         };
         ++draws;
         for (int tries = 1; cut(*at, b1, b2); ++tries) {

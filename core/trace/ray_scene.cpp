@@ -58,8 +58,8 @@ void alphaMaskFilter(const RTCFilterFunctionNArguments* args)
         if (args->valid[i] != -1) continue;
         const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
         const glm::vec2 barycentric(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
-        const glm::vec2 uv = texcoordAt(*geometry->mesh, static_cast<int>(triangle), barycentric);
-        if (!alphaMaskKeeps(*geometry->scene, *geometry->material, uv)) args->valid[i] = 0;
+        if (!alphaMaskKeeps(*geometry->scene, *geometry->material, *geometry->mesh, static_cast<int>(triangle), barycentric))
+            args->valid[i] = 0;
     }
 }
 

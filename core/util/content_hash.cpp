@@ -44,16 +44,23 @@ std::uint64_t hashSceneContent(const Scene& scene)
         h.value(i.worldFromObject);
     }
     h.value(scene.materials.size());
+    auto texture = [&h](const TextureRef& t) {
+        h.value(t.image);
+        h.value(t.texCoord);
+        h.value(t.offset);
+        h.value(t.rotation);
+        h.value(t.scale);
+    };
     for (const Material& m : scene.materials) {
         h.value(m.baseColor);
-        h.value(m.baseColorTexture.image);
+        texture(m.baseColorTexture);
         h.value(m.metallic);
         h.value(m.roughness);
-        h.value(m.metallicRoughnessTexture.image);
+        texture(m.metallicRoughnessTexture);
         h.value(m.specular);
         h.value(m.emission);
-        h.value(m.emissionTexture.image);
-        h.value(m.normalTexture.image);
+        texture(m.emissionTexture);
+        texture(m.normalTexture);
         h.value(m.normalScale);
         h.value(m.doubleSided);
         h.value(m.alphaMode);

@@ -4,14 +4,17 @@
 // depth tests). Call discardMasked last in main(): a discard before implicit derivatives (texture(),
 // dFdx) would leave them undefined for the quad.
 #include "../shared/alpha_mask.h"
+#include "material_uv.glsl"
 
 #ifdef VPLGI_ALPHA_MASK
 uniform vec2 uAlphaMask; // x alphaCutoff, y the base colour factor's alpha
 #endif
 
-void discardMasked(sampler2D baseColorTexture, vec2 uv)
+// uv0, uv1: TEXCOORD_0 and _1; vertexAlpha: COLOR_0's alpha.
+void discardMasked(sampler2D baseColorTexture, vec2 uv0, vec2 uv1, float vertexAlpha)
 {
 #ifdef VPLGI_ALPHA_MASK
-    if (!alphaMaskKeeps(uAlphaMask.y * textureLod(baseColorTexture, uv, 0.0).a, uAlphaMask.x)) discard;
+    float alpha = uAlphaMask.y * vertexAlpha * textureLod(baseColorTexture, materialUV(kUnitBaseColor, uv0, uv1), 0.0).a;
+    if (!alphaMaskKeeps(alpha, uAlphaMask.x)) discard;
 #endif
 }

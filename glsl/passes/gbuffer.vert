@@ -5,6 +5,8 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aTexcoord;
 layout(location = 3) in vec4 aTangent;
+layout(location = 4) in vec2 aTexcoord1;
+layout(location = 5) in vec4 aColor;
 
 uniform mat4 uWorldFromObject;
 uniform mat4 uNormalFromObject; // inverse transpose of the upper 3x3, as a mat4
@@ -13,6 +15,8 @@ layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec2 vTexcoord;
 layout(location = 3) out vec4 vTangent;
+layout(location = 4) out vec2 vTexcoord1;
+layout(location = 5) out vec4 vColor; // COLOR_0
 
 void main()
 {
@@ -20,6 +24,8 @@ void main()
     vWorldPosition = world.xyz;
     vNormal = mat3(uNormalFromObject) * aNormal;
     vTexcoord = aTexcoord;
+    vTexcoord1 = aTexcoord1;
+    vColor = aColor;
     vTangent = vec4(mat3(uWorldFromObject) * aTangent.xyz, aTangent.w);
     gl_Position = frame.clipFromWorld * world;
 }

@@ -14,6 +14,8 @@ layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vNormal;
 layout(location = 2) in vec2 vTexcoord;
 layout(location = 3) in vec4 vTangent;
+layout(location = 4) in vec2 vTexcoord1;
+layout(location = 5) in vec4 vColor; // COLOR_0
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTexture;         // sRGB format
 layout(binding = kUnitMetallicRoughness) uniform sampler2D uMetallicRoughnessTexture;
@@ -48,7 +50,7 @@ void main()
         vec3 t = normalize(vTangent.xyz);
         t = normalize(t - n * dot(n, t));
         vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-        vec3 tn = texture(uNormalTexture, vTexcoord).xyz * 2.0 - 1.0;
+        vec3 tn = texture(uNormalTexture, materialUV(kUnitNormalMap, vTexcoord, vTexcoord1)).xyz * 2.0 - 1.0;
         tn.xy *= uMaterial.w;
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
@@ -57,8 +59,8 @@ void main()
     // average its encoding.
     vec2 geometricOct = octEncode(geometricNormal(vWorldPosition, n, n));
 
-    vec4 base = uBaseColor * texture(uBaseColorTexture, vTexcoord);
-    vec4 mr = texture(uMetallicRoughnessTexture, vTexcoord);
+    vec4 base = uBaseColor * vColor * texture(uBaseColorTexture, materialUV(kUnitBaseColor, vTexcoord, vTexcoord1));
+    vec4 mr = texture(uMetallicRoughnessTexture, materialUV(kUnitMetallicRoughness, vTexcoord, vTexcoord1));
     float metallic = uMaterial.x * mr.b;
     float roughness = uMaterial.y * mr.g;
     vec3 diffuse = (1.0 - metallic) * base.rgb;
@@ -99,5 +101,5 @@ void main()
     outDiffuse = vec4(diffuse, geometricOct.y);
     outSpecular = vec4(f0, roughness);
     outLobe = vec4(toksvigEncode(lobe.axis, lobe.sharpness), lobe.integral);
-    discardMasked(uBaseColorTexture, vTexcoord);
+    discardMasked(uBaseColorTexture, vTexcoord, vTexcoord1, vColor.a);
 }

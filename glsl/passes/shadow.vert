@@ -8,6 +8,8 @@
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec2 aTexcoord;
+layout(location = 4) in vec2 aTexcoord1;
+layout(location = 5) in vec4 aColor;
 
 uniform mat4 uWorldFromObject;
 uniform int uFirstLayer;
@@ -18,7 +20,9 @@ layout(std430, binding = kBindingShadowMatrices) readonly buffer ShadowMatrices 
 
 layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) flat out int vLayer;
-layout(location = 2) out vec2 vTexcoord; // for alpha masks
+layout(location = 2) out vec2 vTexcoord; // for alpha masks: both UV sets and COLOR_0's alpha
+layout(location = 3) out vec2 vTexcoord1;
+layout(location = 4) out float vAlpha;
 
 void main()
 {
@@ -27,6 +31,8 @@ void main()
     vWorldPosition = world.xyz;
     vLayer = layer;
     vTexcoord = aTexcoord;
+    vTexcoord1 = aTexcoord1;
+    vAlpha = aColor.a;
     gl_Layer = layer;
     gl_Position = clipFromWorldPerLayer[layer] * world;
 }

@@ -6,10 +6,12 @@
 #include "../lib/alpha_mask.glsl"
 
 layout(location = 2) in vec2 vTexcoord;
+layout(location = 3) in vec2 vTexcoord1;
+layout(location = 4) in float vAlpha;
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTexture;
 
 void main()
 {
-    discardMasked(uBaseColorTexture, vTexcoord);
+    discardMasked(uBaseColorTexture, vTexcoord, vTexcoord1, vAlpha);
 }

@@ -11,6 +11,8 @@
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec2 aTexcoord;
+layout(location = 4) in vec2 aTexcoord1;
+layout(location = 5) in vec4 aColor;
 
 uniform mat4 uWorldFromObject;
 uniform int uTilesPerRow;
@@ -23,7 +25,9 @@ layout(std430, binding = kBindingShadowAtlasDraw) readonly buffer ShadowAtlasDra
     int drawTiles[];
 };
 
-layout(location = 2) out vec2 vTexcoord; // for alpha masks (location 2, as passes/shadow.vert)
+layout(location = 2) out vec2 vTexcoord; // for alpha masks (locations as passes/shadow.vert)
+layout(location = 3) out vec2 vTexcoord1;
+layout(location = 4) out float vAlpha;
 
 out float gl_ClipDistance[4];
 
@@ -40,5 +44,7 @@ void main()
     gl_ClipDistance[3] = distances.w;
     gl_Layer = tile.z;
     vTexcoord = aTexcoord;
+    vTexcoord1 = aTexcoord1;
+    vAlpha = aColor.a;
     gl_Position = shadowAtlasClipFromViewClip(clip, tile, uTilesPerRow);
 }

@@ -7,6 +7,8 @@
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) flat in int vLayer;
 layout(location = 2) in vec2 vTexcoord;
+layout(location = 3) in vec2 vTexcoord1;
+layout(location = 4) in float vAlpha;
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTexture;
 
@@ -20,5 +22,5 @@ void main()
 {
     vec3 lightPosition = pointEmitters[vLayer / 6].positionProfile.xyz;
     gl_FragDepth = clamp(distance(vWorldPosition, lightPosition) / uFarDistance, 0.0, 1.0);
-    discardMasked(uBaseColorTexture, vTexcoord);
+    discardMasked(uBaseColorTexture, vTexcoord, vTexcoord1, vAlpha);
 }

@@ -12,6 +12,8 @@ uniform float uColorScale;
 
 in vec3 vWorld;
 in vec2 vTexcoord;
+in vec2 vTexcoord1;
+in float vAlpha;
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTexture;
 flat in vec3 vColor;
@@ -24,7 +26,7 @@ void main()
         if (vWorld.y > uCutHeight) discard;
         float t = clamp((vWorld.y - uHeightRange.x) / max(uHeightRange.y - uHeightRange.x, 1e-6), 0.0, 1.0);
         outColor = vec4(vec3(0.05 + 0.35 * t), 1.0);
-        discardMasked(uBaseColorTexture, vTexcoord);
+        discardMasked(uBaseColorTexture, vTexcoord, vTexcoord1, vAlpha);
     } else if (uMode == 1) {
         outColor = vec4(vColor * uColorScale, 1.0);
     } else {

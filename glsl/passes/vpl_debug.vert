@@ -8,6 +8,8 @@
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec2 aTexcoord;
+layout(location = 4) in vec2 aTexcoord1;
+layout(location = 5) in vec4 aColor;
 
 layout(std430, binding = kBindingVPLs) readonly buffer VPLs {
     GpuVPL vpls[];
@@ -20,7 +22,9 @@ uniform vec3 uLines[24];
 uniform float uPointSize;
 
 out vec3 vWorld;
-out vec2 vTexcoord; // uMode 0: for alpha masks
+out vec2 vTexcoord; // uMode 0: for alpha masks (both UV sets, COLOR_0's alpha)
+out vec2 vTexcoord1;
+out float vAlpha;
 flat out vec3 vColor;
 
 void main()
@@ -42,6 +46,8 @@ void main()
     }
     vWorld = world;
     vTexcoord = uMode == 0 ? aTexcoord : vec2(0.0);
+    vTexcoord1 = uMode == 0 ? aTexcoord1 : vec2(0.0);
+    vAlpha = uMode == 0 ? aColor.a : 1.0;
     gl_PointSize = uPointSize;
     gl_Position = uClipFromWorld * vec4(world, 1.0);
 }

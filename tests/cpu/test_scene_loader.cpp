@@ -485,6 +485,69 @@ TEST_CASE("glTF: sparse accessors replace elements of a bufferView or of zeros, 
     CHECK(mesh.indices == std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2});
 }
 
+TEST_CASE("glTF: TEXCOORD_1, COLOR_0 and KHR_texture_transform (offset, rotation, scale, texCoord override)",
+          "[scene_loader]")
+{
+    TempDir dir;
+    GltfBuilder b;
+    const int positions = b.addData<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}, kFloat, "VEC3", 3);
+    const int uv0 = b.addData<float>({0, 0, 1, 0, 0, 1}, kFloat, "VEC2", 2);
+    const int uv1 = b.addData<float>({0.5f, 0.25f, 0.75f, 0.25f, 0.5f, 1}, kFloat, "VEC2", 2);
+    // COLOR_0 as normalized unsigned shorts, VEC4; a second primitive has VEC3 floats.
+    const int rgba = b.addData<std::uint16_t>({65535, 0, 0, 65535, 0, 65535, 0, 32768, 0, 0, 65535, 0}, kUShort,
+                                              "VEC4", 4);
+    b.doc["accessors"][rgba]["normalized"] = true;
+    const int rgb = b.addData<float>({0.25f, 0.5f, 1, 0.25f, 0.5f, 1, 0.25f, 0.5f, 1}, kFloat, "VEC3", 3);
+    b.append("meshes",
+             {{"primitives",
+               json::array({{{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1},
+                                             {"COLOR_0", rgba}}},
+                             {"material", 0}},
+                            {{"attributes", {{"POSITION", positions}, {"COLOR_0", rgb}}}, {"material", 0}}})}});
+    b.append("nodes", {{"mesh", 0}});
+    b.setScene({0});
+    b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+    b.doc["extensionsRequired"] = {"KHR_texture_transform"};
+    const json transform = {{"offset", {0, 1}}, {"rotation", 1.57079632679}, {"scale", {0.5, 0.5}}};
+    b.append("materials",
+             {{"name", "atlas"},
+              {"pbrMetallicRoughness",
+               {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}},
+                {"metallicRoughnessTexture",
+                 {{"index", 0}, {"texCoord", 1}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 0}}}}}}}}},
+              {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}},
+              {"emissiveFactor", {1, 1, 1}}});
+    b.append("textures", {{"source", 0}});
+    b.append("images", {{"name", "rg"}, {"uri", "data:image/bmp;base64," + base64(twoPixelBmp())}});
+    const std::string path = dir.file("uvsets.gltf");
+    writeFile(path, b.gltfWithDataUri());
+    const vplgi::Scene scene = vplgi::loadGltf(path);
+    REQUIRE(scene.meshes.size() == 2);
+    const vplgi::Mesh& mesh = scene.meshes[0];
+    CHECK(mesh.vertices[1].texcoord1 == glm::vec2(0.75f, 0.25f));
+    CHECK(glm::length(mesh.vertices[0].color - glm::vec4(1, 0, 0, 1)) < 1e-6f);
+    CHECK(glm::length(mesh.vertices[1].color - glm::vec4(0, 1, 0, 32768.0f / 65535.0f)) < 1e-6f);
+    CHECK(glm::length(scene.meshes[1].vertices[2].color - glm::vec4(0.25f, 0.5f, 1, 1)) < 1e-6f);
+    CHECK(scene.meshes[1].vertices[2].texcoord1 == glm::vec2(0.0f)); // absent: zeros
+    const vplgi::Material& m = scene.materials[0];
+    const vplgi::TextureRef& base = m.baseColorTexture;
+    CHECK(base.texCoord == 0);
+    // The extension's example: the lower left quadrant of the image (v down), rotated: (0, 0) ->
+    // (0, 1), (1, 0) -> (0, 0.5), (0, 1) -> (0.5, 1), (1, 1) -> (0.5, 0.5).
+    CHECK(glm::length(base.uv({0, 0}, {}) - glm::vec2(0, 1)) < 1e-6f);
+    CHECK(glm::length(base.uv({1, 0}, {}) - glm::vec2(0, 0.5f)) < 1e-6f);
+    CHECK(glm::length(base.uv({0, 1}, {}) - glm::vec2(0.5f, 1)) < 1e-6f);
+    CHECK(glm::length(base.uv({1, 1}, {}) - glm::vec2(0.5f, 0.5f)) < 1e-6f);
+    CHECK(m.metallicRoughnessTexture.texCoord == 0); // the extension's texCoord overrides
+    CHECK(m.emissionTexture.texCoord == 1);
+    CHECK(m.emissionTexture.uv({0.1f, 0.2f}, {0.3f, 0.4f}) == glm::vec2(0.3f, 0.4f));
+
+    b.doc["materials"][0]["emissiveTexture"]["texCoord"] = 2;
+    writeFile(path, b.gltfWithDataUri());
+    CHECK(errorOf([&] { vplgi::loadGltf(path); }) ==
+          path + ": material 0 (atlas): uses TEXCOORD_2 (TEXCOORD_0 and TEXCOORD_1 are supported)");
+}
+
 TEST_CASE("glTF: alphaMode MASK keeps its cutoff, BLEND becomes MASK at 0.5 with one warning, others are refused",
           "[scene_loader][alpha]")
 {
