@@ -67,6 +67,54 @@ TEST_CASE("generated tangents point along +u and are orthogonal to the normal", 
     CHECK(mesh.hasTangents);
 }
 
+TEST_CASE("generated normals weight each triangle by its area", "[scene]")
+{
+    // Two triangles meet at vertex 0: one in the xy plane of area 2 (facing +z), one in the xz
+    // plane of area 0.5 (facing +y). The shared normal is (0, 0.5, 2) normalised.
+    Mesh mesh;
+    mesh.vertices.resize(5);
+    mesh.vertices[0].position = {0, 0, 0};
+    mesh.vertices[1].position = {2, 0, 0};
+    mesh.vertices[2].position = {0, 2, 0};
+    mesh.vertices[3].position = {0, 0, 1};
+    mesh.vertices[4].position = {1, 0, 0};
+    mesh.indices = {0, 1, 2, 0, 3, 4};
+    generateNormals(mesh);
+    CHECK(glm::length(mesh.vertices[0].normal - glm::normalize(glm::vec3(0, 0.5f, 2))) < 1e-6f);
+    CHECK(glm::length(mesh.vertices[1].normal - glm::vec3(0, 0, 1)) < 1e-6f);
+    CHECK(glm::length(mesh.vertices[3].normal - glm::vec3(0, 1, 0)) < 1e-6f);
+}
+
+TEST_CASE("generated tangents follow the normal texture's UV set and KHR_texture_transform", "[scene]")
+{
+    // The triangle (0,0,0) (1,0,0) (0,1,0) facing +z; TEXCOORD_0 u along +x, v along +y; TEXCOORD_1
+    // u along +y, v along +x. Tangent: where the normal texture's u grows; w: +1 when n x t is
+    // where its v grows.
+    auto tangentFor = [](const TextureRef& normalTexture) {
+        Scene scene = oneTriangleScene();
+        Mesh& mesh = scene.meshes[0];
+        const glm::vec2 uv0[3] = {{0, 0}, {1, 0}, {0, 1}};
+        for (int i = 0; i < 3; ++i) {
+            mesh.vertices[static_cast<std::size_t>(i)].texcoord = uv0[i];
+            mesh.vertices[static_cast<std::size_t>(i)].texcoord1 = {uv0[i].y, uv0[i].x};
+        }
+        generateNormals(mesh);
+        generateTangents(mesh, normalTexture);
+        return mesh.vertices[0].tangent;
+    };
+    TextureRef plain;
+    CHECK(glm::length(tangentFor(plain) - glm::vec4(1, 0, 0, 1)) < 1e-6f);
+    TextureRef second;
+    second.texCoord = 1; // u along +y, v along +x: n x t = -x, against v: mirrored
+    CHECK(glm::length(tangentFor(second) - glm::vec4(0, 1, 0, -1)) < 1e-6f);
+    TextureRef rotated;
+    rotated.rotation = 1.5707963f; // u' = v (+y), v' = -u (-x): n x t = -x, with v'
+    CHECK(glm::length(tangentFor(rotated) - glm::vec4(0, 1, 0, 1)) < 1e-5f);
+    TextureRef flipped;
+    flipped.scale = {-1.0f, 1.0f}; // u' = -u: t = -x, n x t = -y against v' = v (+y): mirrored
+    CHECK(glm::length(tangentFor(flipped) - glm::vec4(-1, 0, 0, -1)) < 1e-6f);
+}
+
 TEST_CASE("validation names the broken part", "[scene]")
 {
     Scene scene = oneTriangleScene();
