@@ -175,13 +175,16 @@ void GpuScene::draw(const SceneProgram& programs, Bind bind, GLsizei instanceCou
         }
         program.set("uWorldFromObject", instance.worldFromObject);
         if (material.isMasked()) {
-            // glsl/lib/alpha_mask.glsl: the base colour texture's alpha (level 0) times the factor's.
-            glBindTextureUnit(shared::kUnitBaseColor, material.baseColorTexture.valid()
-                                                          ? imageTexture(material.baseColorTexture.image, true).id()
-                                                          : mWhite.id());
-            glBindSampler(shared::kUnitBaseColor, mMaskSampler.id());
+            // glsl/lib/alpha_mask.glsl: the base colour texture's alpha (level 0) times the factor's;
+            // bindMaterial binds the texture and its UVs when the pass takes the whole material.
             program.set("uAlphaMask", glm::vec2(material.alphaCutoff, material.baseColor.a));
-            if (bind == Bind::Geometry) setTextureUVs(program, material);
+            if (bind == Bind::Geometry) {
+                glBindTextureUnit(shared::kUnitBaseColor, material.baseColorTexture.valid()
+                                                              ? imageTexture(material.baseColorTexture.image, true).id()
+                                                              : mWhite.id());
+                glBindSampler(shared::kUnitBaseColor, mMaskSampler.id());
+                setTextureUVs(program, material);
+            }
         }
         if (bind == Bind::GeometryAndMaterial) {
             program.set("uNormalFromObject", glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject))));

@@ -166,7 +166,7 @@ void Renderer::renderFrame(const Camera& camera, int width, int height, float ti
     }
     // The frame views (final, direct, indirect, albedo, normal, depth), not the texture views, which
     // show their texels as they are.
-    const std::vector<std::string> frameViews = frameViewNames();
+    static const std::vector<std::string> frameViews = frameViewNames();
     if (mParams.antialias == "fxaa" &&
         std::find(frameViews.begin(), frameViews.end(), mParams.display) != frameViews.end()) {
         gl::PassTimer::Scope scope(mTimer, "antialias");

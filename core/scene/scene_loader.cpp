@@ -719,12 +719,9 @@ private:
             return view;
         }
 
-        if (static_cast<std::size_t>(acc.bufferView) >= mModel.bufferViews.size())
-            throw Error(mPath + ": " + where + ": bufferView " + std::to_string(acc.bufferView) + " does not exist");
-        const tinygltf::BufferView& bv = mModel.bufferViews[static_cast<std::size_t>(acc.bufferView)];
-        if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= mModel.buffers.size())
-            throw Error(mPath + ": " + where + ": buffer " + std::to_string(bv.buffer) + " does not exist");
-        const std::vector<unsigned char>& buffer = mModel.buffers[static_cast<std::size_t>(bv.buffer)].data;
+        const std::vector<unsigned char>* bytes = nullptr;
+        const tinygltf::BufferView& bv = bufferView(acc.bufferView, where, bytes);
+        const std::vector<unsigned char>& buffer = *bytes;
         const std::size_t elementSize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(acc.componentType)) *
                                         static_cast<std::size_t>(view.components);
         view.stride = bv.byteStride == 0 ? elementSize : bv.byteStride;
@@ -743,17 +740,27 @@ private:
         return view;
     }
 
-    // A bounds-checked slice of a bufferView: `count` elements of `elementSize` bytes, tightly packed,
-    // from byteOffset (sparse indices and values have no byteStride).
-    const unsigned char* packedData(int bufferView, std::size_t byteOffset, std::size_t count, std::size_t elementSize,
-                                    const std::string& where) const
+    // The bufferView `index` and (in `buffer`) its buffer's bytes, both checked to exist.
+    const tinygltf::BufferView& bufferView(int index, const std::string& where,
+                                           const std::vector<unsigned char>*& buffer) const
     {
-        if (bufferView < 0 || static_cast<std::size_t>(bufferView) >= mModel.bufferViews.size())
-            throw Error(mPath + ": " + where + ": bufferView " + std::to_string(bufferView) + " does not exist");
-        const tinygltf::BufferView& bv = mModel.bufferViews[static_cast<std::size_t>(bufferView)];
+        if (index < 0 || static_cast<std::size_t>(index) >= mModel.bufferViews.size())
+            throw Error(mPath + ": " + where + ": bufferView " + std::to_string(index) + " does not exist");
+        const tinygltf::BufferView& bv = mModel.bufferViews[static_cast<std::size_t>(index)];
         if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= mModel.buffers.size())
             throw Error(mPath + ": " + where + ": buffer " + std::to_string(bv.buffer) + " does not exist");
-        const std::vector<unsigned char>& buffer = mModel.buffers[static_cast<std::size_t>(bv.buffer)].data;
+        buffer = &mModel.buffers[static_cast<std::size_t>(bv.buffer)].data;
+        return bv;
+    }
+
+    // A bounds-checked slice of a bufferView: `count` elements of `elementSize` bytes, tightly packed,
+    // from byteOffset (sparse indices and values have no byteStride).
+    const unsigned char* packedData(int index, std::size_t byteOffset, std::size_t count, std::size_t elementSize,
+                                    const std::string& where) const
+    {
+        const std::vector<unsigned char>* bytes = nullptr;
+        const tinygltf::BufferView& bv = bufferView(index, where, bytes);
+        const std::vector<unsigned char>& buffer = *bytes;
         const bool fits = bv.byteOffset <= buffer.size() && bv.byteLength <= buffer.size() - bv.byteOffset &&
                           byteOffset <= bv.byteLength && count <= (bv.byteLength - byteOffset) / elementSize;
         if (!fits) throw Error(mPath + ": " + where + ": data extends past the end of its buffer");

@@ -25,6 +25,12 @@ glm::vec4 texel(const Image& image, int x, int y, bool srgb)
     return c;
 }
 
+// Whether the alpha mask of `m` keeps texel (x, y) of its base colour texture `image`.
+bool texelKept(const Material& m, const Image& image, int x, int y)
+{
+    return shared::alphaMaskKeeps(m.baseColor.a * texel(image, x, y, false).a, m.alphaCutoff);
+}
+
 } // namespace
 
 glm::vec4 sampleImage(const Image& image, glm::vec2 uv, bool srgb)
@@ -71,7 +77,7 @@ float alphaCoverage(const Scene& scene, const Material& m)
     std::size_t kept = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x)
-            kept += shared::alphaMaskKeeps(m.baseColor.a * texel(image, x, y, false).a, m.alphaCutoff) ? 1 : 0;
+            kept += texelKept(m, image, x, y) ? 1 : 0;
     return static_cast<float>(static_cast<double>(kept) / std::max(1.0, static_cast<double>(image.width) * image.height));
 }
 
@@ -82,19 +88,17 @@ UntexturedMaterials computeUntexturedMaterials(const Scene& scene)
     // reconstruction is the mean of its texels).
     // (Alpha-masked materials: over the texels of the base colour texture their mask keeps, when the
     // texture has the base colour texture's size; else over all.)
-    const Material* current = nullptr;
-    auto mean = [&](const TextureRef& ref, bool srgb) {
+    auto mean = [&](const Material& m, const TextureRef& ref, bool srgb) {
         const Image& image = scene.images[static_cast<std::size_t>(ref.image)];
-        const Image* mask = current->isMasked() && current->baseColorTexture.valid()
-                                ? &scene.images[static_cast<std::size_t>(current->baseColorTexture.image)]
+        const Image* mask = m.isMasked() && m.baseColorTexture.valid()
+                                ? &scene.images[static_cast<std::size_t>(m.baseColorTexture.image)]
                                 : nullptr;
         if (mask && (mask->width != image.width || mask->height != image.height)) mask = nullptr;
         glm::dvec4 sum(0.0);
         double count = 0.0;
         for (int y = 0; y < image.height; ++y)
             for (int x = 0; x < image.width; ++x) {
-                if (mask && !shared::alphaMaskKeeps(current->baseColor.a * texel(*mask, x, y, false).a, current->alphaCutoff))
-                    continue;
+                if (mask && !texelKept(m, *mask, x, y)) continue;
                 sum += glm::dvec4(texel(image, x, y, srgb));
                 count += 1.0;
             }
@@ -117,14 +121,13 @@ UntexturedMaterials computeUntexturedMaterials(const Scene& scene)
         }
     }
     for (const Material& m : scene.materials) {
-        current = &m;
         const auto k = static_cast<std::size_t>(&m - scene.materials.data());
         glm::vec3 base(m.baseColor);
         if (areaSum[k] > 0.0) base *= glm::vec3(colorSum[k] / areaSum[k]);
-        if (m.baseColorTexture.valid()) base *= glm::vec3(mean(m.baseColorTexture, true));
+        if (m.baseColorTexture.valid()) base *= glm::vec3(mean(m, m.baseColorTexture, true));
         float metallic = m.metallic, roughness = m.roughness;
         if (m.metallicRoughnessTexture.valid()) {
-            const glm::vec4 mr = mean(m.metallicRoughnessTexture, false);
+            const glm::vec4 mr = mean(m, m.metallicRoughnessTexture, false);
             roughness *= mr.g;
             metallic *= mr.b;
         }

@@ -25,10 +25,9 @@ constexpr int kLeafMaterial = 1;
 
 const Camera& cameraNamed(const Scene& scene, const std::string& name)
 {
-    for (const Camera& camera : scene.cameras)
-        if (camera.name == name) return camera;
-    FAIL("no camera " << name);
-    return scene.cameras[0];
+    const Camera* camera = scene.findCamera(name);
+    REQUIRE(camera != nullptr);
+    return *camera;
 }
 
 Scene cutout(bool masked)
@@ -137,8 +136,10 @@ TEST_CASE("alpha masks: every technique's bounce from the leaf scales from the s
         MEASURED(technique << ": leaf / solid panel " << ratio << " (" << withLeaf << " / " << withPanel
                            << "), against the path tracer's " << ratio / referenceRatio);
         CHECK(withPanel > 0.0);
-        // The issue's bound. Measured 0.962 (ir) to 1.013 (smcir); the path tracer's ratio (1024 spp
-        // at 32x24) has a standard error near 1%.
+        // The issue's bound. Measured (default seeds) 0.962 (ir) to 1.013 (smcir); the path tracer's
+        // ratio (1024 spp at 32x24) has a standard error near 1%. Over seeds 1-8
+        // (scripts/alpha-mask-seeds) every mean is within 5%, but ir's seeds range 0.865-1.014: a
+        // technique's seed change can cross this bound for ir alone, from its few VPLs on the leaf.
         CHECK(std::abs(ratio / referenceRatio - 1.0) < 0.1);
     }
     // The one scene-drawing program not used above, the VPL overhead view, builds and draws its masked
