@@ -20,6 +20,7 @@
 #include "gl/api/context.h"
 #include "gl/api/debug.h"
 #include "session.h"
+#include "video_writer.h"
 
 namespace vplgi {
 
@@ -137,6 +138,8 @@ int runRender(const std::vector<std::string>& args)
     addAnimationOptions(parser, "frames to render; the last is written (every one with a %04d --out pattern)", 1);
     parser.value("out", "FILE", "output image (.png or .exr); its directory must exist; with a frame number "
                  "pattern such as 'frames/%04d.png' every frame is written", "out/render.png");
+    parser.value("video", "FILE", "also write every frame to a video (.mp4 or .mkv, H.264 through Debian's "
+                 "ffmpeg, one video frame per rendered frame at --fps); --out is then written only when given");
     parser.flag("list-params", "print every parameter key of the technique (--technique all: of each) with "
                 "its value, range or choices and doc, then exit (--scene defaults to cornell)");
     parser.flag("headless", "accepted for symmetry: render is always headless");
@@ -160,6 +163,9 @@ int runRender(const std::vector<std::string>& args)
     }
     const bool sequence = isSequencePattern(out);
     const bool defaultOut = !parser.has("out");
+    const std::string videoPath = parser.get("video");
+    if (!videoPath.empty()) VideoWriter::check(videoPath);
+    const bool writeImageOut = videoPath.empty() || !defaultOut;
     std::filesystem::path outDir = std::filesystem::path(out).parent_path();
     // The directory must exist (the default's is created) and take a file: checked before the
     // render, not after it.
@@ -174,11 +180,15 @@ int runRender(const std::vector<std::string>& args)
     if (!quiet) std::printf("context = %s\n", context->description().c_str());
     session.createRenderer();
     std::unique_ptr<FrameStats> stats = statsPath.empty() ? nullptr : std::make_unique<FrameStats>();
+    std::unique_ptr<VideoWriter> video =
+        videoPath.empty() ? nullptr
+                          : std::make_unique<VideoWriter>(videoPath, size.width, size.height, animation.fps);
     for (int frame = 0; frame < animation.frames; ++frame) {
         session.applyAnimations(animation.timeOf(frame));
         if (stats) stats->begin();
         session.renderer().renderFrame(session.camera(), size.width, size.height, animation.timeOf(frame));
         if (stats) stats->end(frame, session.renderer());
+        if (video) video->add(session.renderer().readDisplay());
         if (sequence) {
             writeOutput(session, framePath(out, frame));
             if (!quiet) std::printf("%s\n", framePath(out, frame).c_str());
@@ -195,6 +205,11 @@ int runRender(const std::vector<std::string>& args)
                         t.milliseconds);
     }
     if (stats) stats->write(statsPath);
+    if (video) {
+        video->finish();
+        std::printf("%s (%d frames at %g fps)\n", videoPath.c_str(), video->frames(), static_cast<double>(animation.fps));
+    }
+    if (!writeImageOut) return 0;
     if (sequence) {
         if (quiet) std::printf("%s\n", framePath(out, animation.frames - 1).c_str());
         return 0;

@@ -33,6 +33,7 @@
 #include "param_panel.h"
 #include "report.h"
 #include "session.h"
+#include "video_writer.h"
 #include "view_script.h"
 
 namespace vplgi {
@@ -51,6 +52,7 @@ constexpr const char* kKeys[][2] = {
     {"R", "reload shaders (the old ones stay when compiling fails)"},
     {"P", "play / pause the scene's animations (fixed step 1/fps per frame)"},
     {"C", "start / stop recording the camera path (saved as a scene file)"},
+    {"M", "start / stop recording a video of what is shown, without the panel (.mp4 in the screenshot directory)"},
     {"V", "vsync on / off"},
     {"Esc", "quit"},
 };
@@ -136,6 +138,8 @@ private:
     void watchShaders();
     void toggleRecording(const std::string& path);
     void togglePlayback();
+    void toggleVideo(const std::string& path); // path "": the next free name in the screenshot directory
+    void recordVideoFrame(glm::ivec2 size);
     // The frame.
     void renderScene(glm::ivec2 size);
     void present(glm::ivec2 size);
@@ -163,6 +167,7 @@ private:
     glm::dvec2 mLastDragCursor{0.0};
     ParamPanel mPanel;
     CameraPathRecorder mRecorder;
+    std::unique_ptr<VideoWriter> mVideo; // while M records
     std::chrono::steady_clock::time_point mStart;
 
     // UI state.
@@ -243,6 +248,7 @@ Viewer::Viewer(const ViewOptions& options)
 
 Viewer::~Viewer()
 {
+    mVideo.reset();   // only after an error: run() finishes a video still recording when the window closes
     mSession.reset(); // GL objects before the ImGui backend and the window
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
@@ -283,6 +289,8 @@ void Viewer::handleKey(int key)
         togglePlayback();
     else if (key == GLFW_KEY_C)
         toggleRecording(mOptions.recordPath);
+    else if (key == GLFW_KEY_M)
+        toggleVideo("");
     else if (key == GLFW_KEY_V) {
         mVsync = !mVsync;
         glfwSwapInterval(mVsync ? 1 : 0);
@@ -322,6 +330,44 @@ void Viewer::toggleRecording(const std::string& path)
     mMessageIsError = false;
     std::printf("%s\n", mMessage.c_str());
     std::fflush(stdout);
+}
+
+void Viewer::toggleVideo(const std::string& path)
+{
+    if (!mVideo) {
+        std::string file = path;
+        if (file.empty()) {
+            std::filesystem::create_directories(mOptions.screenshotDir);
+            file = nextScreenshotPath(mOptions.screenshotDir, "vplgi-" + mSession->scene().name, ".mp4");
+        }
+        const glm::ivec2 size = mWindow->framebufferSize();
+        mVideo = std::make_unique<VideoWriter>(file, size.x, size.y, mOptions.fps);
+        mMessage = "recording a video to " + file + " (M stops)";
+        mMessageIsError = false;
+        return;
+    }
+    const std::unique_ptr<VideoWriter> video = std::move(mVideo);
+    video->finish();
+    char message[512];
+    std::snprintf(message, sizeof message, "video: %d frames at %g fps written to %s", video->frames(),
+                  static_cast<double>(mOptions.fps), video->path().c_str());
+    mMessage = message;
+    mMessageIsError = false;
+    std::printf("%s\n", message);
+    std::fflush(stdout);
+}
+
+// One video frame per frame shown (the real-time frames are not resampled: a video at --fps plays
+// them at that rate), read from the window before the panel is drawn.
+void Viewer::recordVideoFrame(glm::ivec2 size)
+{
+    if (!mVideo) return;
+    if (size.x != mVideo->width() || size.y != mVideo->height()) {
+        toggleVideo(""); // a video has one size: a resized window ends it
+        mMessage += " (the window was resized)";
+        return;
+    }
+    mVideo->add(readWindow(size));
 }
 
 void Viewer::applySettings(const Settings& settings)
@@ -416,6 +462,10 @@ void Viewer::runScriptCommand(const ScriptCommand& c)
             require(mRecorder.recording(), "record stop: not recording");
             toggleRecording(a[1]);
         }
+    } else if (c.name == "video") {
+        require((a[0] == "start") != static_cast<bool>(mVideo),
+                a[0] == "start" ? "video start: already recording" : "video stop: not recording");
+        toggleVideo(a.size() > 1 ? a[1] : "");
     } else if (c.name == "play") {
         if ((a[0] == "on") != mPlaying) togglePlayback();
         require(mPlaying == (a[0] == "on"), "play on: the scene has no animations");
@@ -491,6 +541,7 @@ void Viewer::run()
         }
         renderScene(size);
         present(size);
+        recordVideoFrame(size);
         const bool screenshot = mScreenshotRequested;
         mScreenshotRequested = false;
         if (screenshot && !mScreenshotWithPanel) writeScreenshot(mPendingScreenshot);
@@ -510,6 +561,7 @@ void Viewer::run()
         mHistoryNext = (mHistoryNext + 1) % kHistory;
         ++mFrame;
     }
+    if (mVideo) toggleVideo(""); // Esc or a script's quit while recording: the video is kept
 }
 
 void Viewer::renderScene(glm::ivec2 size)

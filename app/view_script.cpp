@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -74,6 +75,13 @@ std::string checkCommand(const ScriptCommand& c)
         if (n == 2 && c.args[0] == "stop") return "";
         return "usage: record start | record stop FILE";
     }
+    if (c.name == "video") {
+        if (n == 1 && c.args[0] == "stop") return "";
+        if (n < 1 || n > 2 || c.args[0] != "start") return "usage: video start [FILE.mp4|FILE.mkv] | video stop";
+        const std::string extension = n == 2 ? std::filesystem::path(c.args[1]).extension().string() : ".mp4";
+        return extension == ".mp4" || extension == ".mkv" ? ""
+                                                          : "video: \"" + c.args[1] + "\" must end in .mp4 or .mkv";
+    }
     if (c.name == "reload" || c.name == "quit") return count(0, 0, c.name == "reload" ? "reload" : "quit");
     if (c.name == "resize") {
         if (n != 2) return "usage: resize W H";
@@ -87,7 +95,7 @@ std::string checkCommand(const ScriptCommand& c)
     }
     return "unknown command \"" + c.name +
            "\" (set, technique, display, pip, panel, screenshot-panel, screenshot, key, dump-params, camera, record, "
-           "play, wait-file, "
+           "video, play, wait-file, "
            "reload, vsync, resize, quit)";
 }
 

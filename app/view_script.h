@@ -17,6 +17,7 @@
 //   dump-params FILE        the keys the panel generated, one a line
 //   camera PX PY PZ TX TY TZ          place the camera: eye and target [m]
 //   record start | record stop FILE    camera path, written as a scene-file animation
+//   video start [FILE] | video stop     a video of the frames shown (.mp4/.mkv; the M key's)
 //   play on|off             play the scene's animations at the fixed step 1/--fps per frame
 //   reload                  reload shaders (as R: a failed compile keeps the old programs and shows
 //                           the error in the window)

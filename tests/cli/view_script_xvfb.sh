@@ -37,6 +37,8 @@ bad "screenshot a.jpg" "must end in .png"
 bad "key F13" "unknown key"
 bad "panel maybe" "usage: panel on|off"
 bad "camera 1 2 3" "usage: camera"
+bad "video start v.avi" "must end in .mp4 or .mkv"
+bad "video" "usage: video start"
 echo "ok: bad script lines are one-line errors"
 
 # A failing command while running: the error names the line, the exit status is non-zero.
