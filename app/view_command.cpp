@@ -22,15 +22,19 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <set>
+#include <sstream>
 
 #include "camera_path.h"
 #include "cli.h"
 #include "commands.h"
 #include "core/util/error.h"
 #include "core/util/image_io.h"
+#include "gl/api/context.h"
 #include "gl/api/objects.h"
 #include "gl/api/window.h"
 #include "param_panel.h"
+#include "render_scale.h"
 #include "report.h"
 #include "session.h"
 #include "video_writer.h"
@@ -106,6 +110,8 @@ struct ViewOptions {
     std::string recordPath;      // where C writes the recorded camera path
     std::string scriptPath;      // --script
     std::string dumpPanelParams; // --dump-panel-params FILE: the panel's keys after the first frame, then quit
+    std::string statsPath;       // --stats FILE: frame, ms, internal size per frame, written at the end
+    RenderScale renderScale;     // the --set viewer.* keys
     float fps = 30.0f;           // animation playback and recording: 1/fps per frame
     bool play = false;           // start with the animations playing
     bool panel = true;
@@ -133,6 +139,7 @@ private:
     void runScriptCommand(const ScriptCommand& command);
     void switchTechnique(const std::string& name);
     void applySettings(const Settings& settings);
+    void applySoftwareDefaults(); // after each createRenderer on a software rasterizer
     void selectView(int index);
     void reloadShaders();
     void watchShaders();
@@ -147,6 +154,7 @@ private:
     void renderImGui(glm::ivec2 size); // the ImGui draw data into the window's back buffer
     void drawPanel(glm::ivec2 size);
     void drawTimings();
+    void drawRenderScale(glm::ivec2 size);
     void drawLights();
     void drawCameraSection();
     void drawHelp();
@@ -158,6 +166,10 @@ private:
     std::string setArguments();
 
     ViewOptions mOptions;
+    RenderScale mScale;
+    Settings mSoftwareDefaults;         // the lighter defaults in use (shown in the panel)
+    std::set<std::string> mUserKeys;    // keys the user set (--set, panel, script): defaults leave them
+    std::ostringstream mStats;          // --stats rows
     std::unique_ptr<gl::Window> mWindow; // declared first: destroyed after the session's GL objects
     std::unique_ptr<Session> mSession;
     std::unique_ptr<gl::Framebuffer> mBlitSource;
@@ -202,7 +214,7 @@ private:
 };
 
 Viewer::Viewer(const ViewOptions& options)
-    : mOptions(options), mShowPanel(options.panel || !options.dumpPanelParams.empty()),
+    : mOptions(options), mScale(options.renderScale), mShowPanel(options.panel || !options.dumpPanelParams.empty()),
       mWatchShaders(options.watchShaders), mPlaying(options.play), mFrameMs(kHistory, 0.0f), mGpuMs(kHistory, 0.0f)
 {
     // Everything about the input is checked before a window opens.
@@ -217,6 +229,9 @@ Viewer::Viewer(const ViewOptions& options)
     mWindow = std::make_unique<gl::Window>("vplgi - " + mSession->scene().name + " - " + mSession->techniqueName(),
                                            options.size.width, options.size.height);
     std::printf("context = %s\n", mWindow->description().c_str());
+    mScale.setSoftware(gl::isSoftwareRenderer());
+    for (const auto& setting : options.session.settings)
+        mUserKeys.insert(setting.first);
 
     // Dear ImGui after the window's own callbacks: its GLFW backend chains to them.
     IMGUI_CHECKVERSION();
@@ -236,6 +251,7 @@ Viewer::Viewer(const ViewOptions& options)
     require(ImGui_ImplOpenGL3_Init("#version 450"), "Dear ImGui: cannot initialise its OpenGL 3 backend");
 
     mSession->createRenderer([this](const std::string& task, int done, int total) { drawProgress(task, done, total); });
+    applySoftwareDefaults();
     mBlitSource = std::make_unique<gl::Framebuffer>("display (blit source)");
 
     mFly.fromCamera(mSession->camera());
@@ -372,9 +388,40 @@ void Viewer::recordVideoFrame(glm::ivec2 size)
 
 void Viewer::applySettings(const Settings& settings)
 {
-    // Unknown keys and bad values throw: a script stops with the error, the panel shows it.
-    if (settings.empty()) return;
-    mSession->renderer().applySettings(settings);
+    // Unknown keys and bad values throw: a script stops with the error, the panel shows it. The
+    // viewer's own keys (viewer.*) go to the render scale.
+    Settings rest = settings;
+    mScale.take(rest);
+    for (const auto& setting : settings)
+        mUserKeys.insert(setting.first);
+    if (rest.empty()) return;
+    mSession->renderer().applySettings(rest);
+}
+
+// The viewer's lighter defaults on a software rasterizer (issue 28 part 5), for the keys this
+// technique has and the user did not set; measured with scripts/viewer-frame-times (README "The
+// viewer without a GPU"). Not in the papers: their budgets stay the defaults everywhere else.
+void Viewer::applySoftwareDefaults()
+{
+    mSoftwareDefaults.clear();
+    if (!gl::isSoftwareRenderer()) return;
+    struct Lighter {
+        const char* technique; // a prefix of the technique's name
+        const char* key;
+        const char* value;
+    };
+    static const Lighter kLighter[] = {
+        {"smcir", "smcir.mapsPerFrame", "64"}, // the shadow maps' first build spread over frames
+        {"ir", "ir.mapsPerFrame", "64"},
+        {"lightskin", "rsm.size", "256"}, // LightSkin's 1024^2 RSM (its VALs): 16x fewer texels
+    };
+    ParamDumper current;
+    mSession->renderer().visitParams(current);
+    const std::string technique = mSession->techniqueName();
+    for (const Lighter& l : kLighter)
+        if (technique.rfind(l.technique, 0) == 0 && current.values().count(l.key) && !mUserKeys.count(l.key))
+            mSoftwareDefaults.emplace_back(l.key, l.value);
+    mSession->renderer().applySettings(mSoftwareDefaults);
 }
 
 void Viewer::switchTechnique(const std::string& name)
@@ -399,6 +446,7 @@ void Viewer::switchTechnique(const std::string& name)
     mSession.reset();
     mSession = std::move(next);
     mSession->createRenderer([this](const std::string& task, int done, int total) { drawProgress(task, done, total); });
+    applySoftwareDefaults();
     glfwSetWindowTitle(mWindow->handle(),
                        ("vplgi - " + mSession->scene().name + " - " + mSession->techniqueName()).c_str());
     std::printf("technique = %s\n", name.c_str());
@@ -539,6 +587,8 @@ void Viewer::run()
             glfwWaitEventsTimeout(0.1);
             continue;
         }
+        const auto frameStart = std::chrono::steady_clock::now();
+        const glm::ivec2 internal = mScale.internalSize(size);
         renderScene(size);
         present(size);
         recordVideoFrame(size);
@@ -549,6 +599,11 @@ void Viewer::run()
         if (screenshot && mScreenshotWithPanel) writeScreenshot(mPendingScreenshot);
         if (screenshot) mPendingScreenshot.clear();
         window.swapBuffers();
+        if (mScale.adapting() || !mOptions.statsPath.empty()) glFinish(); // the frame's whole cost
+        const double frameMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+        if (!mOptions.statsPath.empty()) mStats << mFrame << ',' << frameMs << ',' << internal.x << ',' << internal.y << '\n';
+        mScale.adapt(frameMs, size);
 
         if (!mOptions.dumpPanelParams.empty()) { // the panel's keys of the first frame, then quit
             dumpPanelParams(mOptions.dumpPanelParams);
@@ -562,13 +617,15 @@ void Viewer::run()
         ++mFrame;
     }
     if (mVideo) toggleVideo(""); // Esc or a script's quit while recording: the video is kept
+    if (!mOptions.statsPath.empty()) writeTextFile(mOptions.statsPath, "frame,ms,internal_width,internal_height\n" + mStats.str());
 }
 
 void Viewer::renderScene(glm::ivec2 size)
 {
     const float time = mPlaying ? mAnimationTime : 0.0f;
+    const glm::ivec2 internal = mScale.internalSize(size);
     try {
-        mSession->renderer().renderFrame(mSession->camera(), size.x, size.y, time);
+        mSession->renderer().renderFrame(mSession->camera(), internal.x, internal.y, time);
     } catch (const Error& e) {
         // A view that cannot be shown (renderer.displayLayer past its layers): back to the final
         // image with the message in the panel, instead of an error every frame.
@@ -576,21 +633,23 @@ void Viewer::renderScene(glm::ivec2 size)
         mMessage = e.what();
         mMessageIsError = true;
         mSession->renderer().applySettings({{"renderer.display", "final"}, {"renderer.displayLayer", "-1"}});
-        mSession->renderer().renderFrame(mSession->camera(), size.x, size.y, time);
+        mSession->renderer().renderFrame(mSession->camera(), internal.x, internal.y, time);
     }
 }
 
 void Viewer::present(glm::ivec2 size)
 {
+    // The internal size upscaled to the window (bilinear; 1:1 at scale 1).
+    const glm::ivec2 internal = mScale.internalSize(size);
     mBlitSource->attach(GL_COLOR_ATTACHMENT0, mSession->renderer().displayTexture());
-    glBlitNamedFramebuffer(mBlitSource->id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
-                           GL_NEAREST);
+    glBlitNamedFramebuffer(mBlitSource->id(), 0, 0, 0, internal.x, internal.y, 0, 0, size.x, size.y,
+                           GL_COLOR_BUFFER_BIT, internal == size ? GL_NEAREST : GL_LINEAR);
     if (mInsetView.empty()) return;
     // Picture-in-picture: a quarter-size copy of the chosen view in the bottom right corner.
     const gl::Texture& inset = mSession->renderer().renderInset(mInsetView);
     mBlitSource->attach(GL_COLOR_ATTACHMENT0, inset);
     const int w = size.x / 4, h = size.y / 4, margin = static_cast<int>(8 * mUiScale);
-    glBlitNamedFramebuffer(mBlitSource->id(), 0, 0, 0, size.x, size.y, size.x - w - margin, margin, size.x - margin,
+    glBlitNamedFramebuffer(mBlitSource->id(), 0, 0, 0, internal.x, internal.y, size.x - w - margin, margin, size.x - margin,
                            margin + h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
@@ -738,6 +797,7 @@ void Viewer::drawPanel(glm::ivec2 size)
     ImGui::Begin("vplgi", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::PushItemWidth(-0.45f * width);
     ImGui::Text("%s   %d x %d   F1 help", mSession->scene().name.c_str(), size.x, size.y);
+    drawRenderScale(size);
 
     // Technique selector.
     const std::vector<std::string> techniques = techniqueNames();
@@ -808,6 +868,33 @@ void Viewer::drawPanel(glm::ivec2 size)
     }
     ImGui::PopItemWidth();
     ImGui::End();
+}
+
+// The internal size, its control and the software rasterizer's lighter defaults.
+void Viewer::drawRenderScale(glm::ivec2 size)
+{
+    ImGui::Text("internal %s", mScale.describe(size).c_str());
+    bool automatic = mScale.automatic();
+    float scale = mScale.internalSize(size).x / static_cast<float>(std::max(size.x, 1));
+    if (ImGui::Checkbox("auto scale", &automatic)) mScale.set("viewer.renderScale", automatic ? "auto" : "1");
+    if (!automatic) {
+        ImGui::SameLine();
+        if (ImGui::SliderFloat("##renderScale", &scale, 0.05f, 1.0f, "%.2f"))
+            mScale.set("viewer.renderScale", std::to_string(scale));
+    } else if (mScale.adapting()) {
+        float target = mScale.targetMs();
+        ImGui::SameLine();
+        if (ImGui::SliderFloat("target ms", &target, 16.0f, 2000.0f, "%.0f", ImGuiSliderFlags_Logarithmic))
+            mScale.set("viewer.targetMs", std::to_string(target));
+    }
+    if (!mSoftwareDefaults.empty()) {
+        std::string text = "software rasterizer, lighter defaults:";
+        for (const auto& [key, value] : mSoftwareDefaults)
+            text += " " + key + "=" + value;
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextDisabled("%s", text.c_str());
+        ImGui::PopTextWrapPos();
+    }
 }
 
 void Viewer::drawTimings()
@@ -1032,6 +1119,8 @@ int runView(const std::vector<std::string>& args)
     parser.value("script", "FILE", "run the frame-timed commands of FILE (app/view_script.h lists them)");
     parser.value("fps", "F", "animation playback and scripted recording advance 1/F s per frame", "30");
     parser.value("dump-panel-params", "FILE", "write the keys the panel generated after the first frame, then quit");
+    parser.value("stats", "FILE", "write a CSV at the end with a row per frame: frame, ms (render, present, panel "
+                 "and swap, after glFinish), internal_width, internal_height");
     parser.flag("play", "start with the scene's animations playing");
     parser.flag("no-panel", "start with the panel hidden (F2 shows it)");
     parser.flag("watch-shaders", "reload shaders when a file under glsl/ changes");
@@ -1047,6 +1136,12 @@ int runView(const std::vector<std::string>& args)
     options.panel = !parser.has("no-panel");
     options.watchShaders = parser.has("watch-shaders");
     options.session = sessionOptions(parser);
+    options.statsPath = parser.get("stats");
+    if (!options.statsPath.empty()) checkWritableDirectory(options.statsPath);
+    // viewer.renderScale: automatic by default; 1 under --script, whose frames must not depend on
+    // the machine's speed (an explicit --set viewer.renderScale=auto still adapts).
+    if (!options.scriptPath.empty()) options.renderScale.set("viewer.renderScale", "1");
+    options.renderScale.take(options.session.settings);
     Viewer viewer(options);
     viewer.run();
     return 0;

@@ -189,15 +189,19 @@ void GpuScene::draw(const SceneProgram& programs, Bind bind, GLsizei instanceCou
         if (bind == Bind::GeometryAndMaterial) {
             program.set("uNormalFromObject", glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject))));
             bindMaterial(program, material, mesh.hasTangents);
-            // glTF: single-sided materials are back-face culled.
-            if (material.doubleSided) glDisable(GL_CULL_FACE);
-            else glEnable(GL_CULL_FACE);
         }
+        // The back-face rule (Material::doubleSided): single-sided surfaces are culled from behind in
+        // every pass, the camera's and every light view's (all right-handed, light_view.h, so the
+        // winding alone decides); a mirroring instance's front is clockwise.
+        if (material.doubleSided) glDisable(GL_CULL_FACE);
+        else glEnable(GL_CULL_FACE);
+        glFrontFace(instance.winding() < 0.0f ? GL_CW : GL_CCW);
         glBindVertexArray(buffers.vertexArray.id());
         glDrawElementsInstanced(GL_TRIANGLES, buffers.indexCount, GL_UNSIGNED_INT, nullptr, instanceCount);
     }
     glBindVertexArray(0);
     glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
     glUseProgram(0);
 }
 

@@ -39,7 +39,8 @@ std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<
                 const auto l = static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), u) -
                                                         cumulative.begin());
                 const TracedVAL& val = vals[std::min(l, vals.size() - 1)];
-                if (rays.visible(cache.position + lift * cache.normal, val.position + lift * val.normal)) ++visible;
+                if (rays.visible(cache.position + lift * cache.normal, val.position + lift * val.normal, Looker::End))
+                    ++visible; // the VAL looks
             }
             visibility[c] = static_cast<float>(visible) / static_cast<float>(samples);
         }

@@ -1324,12 +1324,52 @@ Scene makeCutout()
     return scene;
 }
 
+// one-sided
+
+// The back-face rule's test scene (issue 28 part 2; scene.h Material::doubleSided): two opaque
+// single-sided grey panels (2 m x 1.8 m) side by side at z = 0 on a floor, a spot light in front
+// (+z) that takes in both. Panel "facing" (x < 0) turns its front to the light: it casts a shadow
+// behind and bounces light forward. Panel "away" (x > 0) is the same mesh placed with a mirror
+// (scale z by -1: glTF's clockwise front) so that its front faces -z: from the light and from the
+// default camera it is seen from behind, where it is absent: no shadow, no bounce, the floor behind
+// it shows through. Cameras: "default" (oblique, in front), "behind" (oblique, behind the panels:
+// the facing panel is absent, the away panel's front is seen), "front" (down onto the floor in front).
+Scene makeOneSided()
+{
+    Scene scene = newScene("one-sided");
+    const int floorMaterial = addMaterial(scene, "floor", glm::vec3(0.6f));
+    const int panelMaterial = addMaterial(scene, "panel", glm::vec3(0.8f));
+    Mesh floor = newMesh("floor", floorMaterial);
+    addRect(floor, glm::vec3(-4.0f, 0.0f, -3.0f), glm::vec3(0.0f, 0.0f, 6.0f), glm::vec3(8.0f, 0.0f, 0.0f), 1.0f);
+    placeMesh(scene, std::move(floor));
+    Mesh facing = newMesh("facing", panelMaterial);
+    addRect(facing, glm::vec3(-2.2f, 0.1f, 0.0f), glm::vec3(2.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.8f, 0.0f), 2.0f);
+    placeMesh(scene, std::move(facing));
+    Mesh away = newMesh("away", panelMaterial); // front +z in object space
+    addRect(away, glm::vec3(0.2f, 0.1f, 0.0f), glm::vec3(2.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.8f, 0.0f), 2.0f);
+    addInstance(scene, addMesh(scene, std::move(away)), glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, -1.0f)));
+
+    // Aimed between the panels; the 45-degree cone takes in both (their outer corners are 33-38
+    // degrees off the axis) and the floor behind them out to z = -2.5 m.
+    scene.lights.push_back(makeSpotLight("spot", glm::vec3(0.0f, 3.5f, 2.5f), glm::vec3(0.0f, 0.9f, 0.0f),
+                                         glm::vec3(1.0f), 30.0f, 40.0f, 45.0f));
+    scene.cameras.push_back(makeCamera("default", glm::vec3(1.0f, 2.6f, 4.5f), glm::vec3(0.0f, 0.6f, -0.8f), 50.0f,
+                                       0.05f, 30.0f));
+    scene.cameras.push_back(makeCamera("behind", glm::vec3(-1.0f, 2.6f, -4.0f), glm::vec3(0.0f, 0.6f, 0.5f), 50.0f,
+                                       0.05f, 30.0f));
+    Camera front = makeCamera("front", glm::vec3(0.0f, 3.0f, 1.4f), glm::vec3(0.0f, 0.0f, 1.4f), 60.0f, 0.05f, 30.0f);
+    front.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.cameras.push_back(front);
+    scene.validate();
+    return scene;
+}
+
 } // namespace
 
 std::vector<std::string> builtinSceneNames()
 {
-    return {"board", "canyon", "caustics", "cornell", "cutout", "furnace", "glossy", "maze", "sealed", "sealed-emissive",
-            "sealed-point", "sealed-spot", "street"};
+    return {"board", "canyon", "caustics", "cornell", "cutout", "furnace", "glossy", "maze", "one-sided", "sealed",
+            "sealed-emissive", "sealed-point", "sealed-spot", "street"};
 }
 
 bool isBuiltinScene(const std::string& name)
@@ -1348,6 +1388,7 @@ Scene makeBuiltinScene(const std::string& name)
     if (name == "furnace") return makeFurnace(FurnaceParams{});
     if (name == "glossy") return makeGlossy();
     if (name == "maze") return makeMaze();
+    if (name == "one-sided") return makeOneSided();
     if (name == "sealed") return makeSealed("sun");
     if (name == "sealed-emissive") return makeSealed("emissive");
     if (name == "sealed-point") return makeSealed("point");

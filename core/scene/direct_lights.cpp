@@ -36,7 +36,7 @@ std::vector<EmissiveTriangle> collectEmissiveTriangles(const Scene& scene)
             glm::vec3 cross = glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
             float twiceArea = glm::length(cross);
             if (!(twiceArea > 0.0f)) continue;
-            tri.normal = cross / twiceArea;
+            tri.normal = instance.winding() * cross / twiceArea; // the emitting front (Instance::winding)
             tri.area = 0.5f * twiceArea;
             tri.radiance = material.emission;
             tri.power = shared::luminanceRec709(material.emission) * tri.area;

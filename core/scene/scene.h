@@ -73,6 +73,11 @@ struct Material {
     TextureRef emissionTexture;
     TextureRef normalTexture;
     float normalScale = 1.0f;
+    // One back-face rule everywhere (docs/back-faces.md): a single-sided surface exists from its front
+    // only. From behind it is absent: the rasterizer culls it in the camera and in every light view,
+    // rays pass through it (an Embree filter), it neither casts shadows nor reflects light there.
+    // glTF's front is the counter-clockwise side, clockwise under a mirroring transform
+    // (Instance::winding). Double-sided surfaces are shaded on the side they are seen from.
     bool doubleSided = false;
     // glTF alphaMode: OPAQUE ignores alpha; MASK keeps a point where the base colour's alpha
     // (factor times texture, level 0, bilinear) is >= alphaCutoff and makes it absent elsewhere, in
@@ -100,6 +105,11 @@ struct Mesh {
 struct Instance {
     int mesh = 0;
     glm::mat4 worldFromObject{1.0f};
+
+    // glTF: a transform with a negative determinant mirrors, and its triangles' front is then the
+    // clockwise side: -1, else 1. Multiplies cross(p1 - p0, p2 - p0) of the world corners to give the
+    // front normal; the rasterizer takes it as glFrontFace(GL_CW).
+    float winding() const { return glm::determinant(glm::mat3(worldFromObject)) < 0.0f ? -1.0f : 1.0f; }
 };
 
 enum class LightType { Point, Spot, Directional };

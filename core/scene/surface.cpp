@@ -222,7 +222,7 @@ glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights
         if (cosine <= 0.0f) continue;
         float profile = shared::emitterProfile(e, -wi);
         if (profile <= 0.0f) continue;
-        if (!rays.visible(origin, glm::vec3(e.positionProfile))) continue;
+        if (!rays.visible(origin, glm::vec3(e.positionProfile), Looker::End)) continue; // the light looks
         glm::vec3 f = shared::evaluateBRDF(point.material, point.normal, wo, wi);
         radiance += f * glm::vec3(e.intensity) * profile * cosine / distance2;
     }
@@ -234,7 +234,7 @@ glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights
         shadow.origin = origin;
         shadow.direction = wi;
         shadow.tMin = 0.0f;
-        if (rays.occluded(shadow)) continue;
+        if (rays.occluded(shadow, Looker::End)) continue; // the light looks
         glm::vec3 f = shared::evaluateBRDF(point.material, point.normal, wo, wi);
         radiance += f * glm::vec3(d.irradiance) * cosine;
     }

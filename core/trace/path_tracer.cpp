@@ -375,7 +375,7 @@ void Integrator::collectEmitters()
             const glm::vec3 cross = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
             const float twiceArea = glm::length(cross);
             if (twiceArea > 0.0f) {
-                e.normal = cross / twiceArea;
+                e.normal = instance.winding() * cross / twiceArea; // the emitting front (Instance::winding)
                 e.area = 0.5f * twiceArea;
             }
             e.radiance = material.emission;
@@ -463,7 +463,7 @@ glm::vec3 Integrator::sampleEmitters(const SurfacePoint& s, const glm::vec3& wo,
     const glm::vec3 origin = s.position + s.geometricNormal * mOffset;
     const glm::vec3 end = y + (signedCosLight > 0.0f ? e.normal : -e.normal) * mOffset;
     if (rays) ++*rays;
-    if (!mRays.visible(origin, end)) return glm::vec3(0.0f);
+    if (!mRays.visible(origin, end, Looker::End)) return glm::vec3(0.0f); // the emitter looks
 
     const float pdfLight = static_cast<float>(e.power / mTotalPower) / e.area * distance2 / cosLight;
     const float weight = powerHeuristic(pdfLight, pdfBRDF(s.material, s.normal, wo, wi));
@@ -513,7 +513,9 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
         } else {
             // Past maxDepth a vertex only adds emission: without emitters its intersection is moot.
             if (depth >= maxDepth && mEmitters.empty()) break;
-            const Hit hit = mRays.intersect(ray);
+            // The back-face rule (ray_scene.h Looker): the camera does not see backs; a bounce stops
+            // on either side (a back is black: the next vertex, whose light the bounce gathers, looks).
+            const Hit hit = mRays.intersect(ray, depth == 0 ? Looker::Origin : Looker::None);
             if (rays) ++*rays;
             if (!hit.valid()) break; // no environment light
             wo = -ray.direction;
@@ -542,7 +544,8 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
             }
         }
         if (depth >= maxDepth) break;
-        // The back of a single-sided surface reflects nothing.
+        // The back of a single-sided surface (met by a bounce, Looker::None) reflects nothing, nor does
+        // a point seen from below its geometric horizon.
         if (glm::dot(s.geometricNormal, wo) <= 0.0f) break;
 
         if (countsLightSamples(depth)) {

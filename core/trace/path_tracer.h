@@ -34,9 +34,13 @@
 //  estimation runs at vertices 0..maxDepth-1. maxDepth = 0 is emission only, 1 is direct light
 //  only, 2 adds one-bounce indirect (the furnace's L_2), and so on.
 //
-//  Surfaces: single-sided materials emit and reflect on their front (counter-clockwise) side only;
-//  a path that reaches the back of one ends there (the rasterizer culls it). Double-sided materials
-//  are shaded on the side the ray arrives from (surfaceAt).
+//  Surfaces: the back-face rule (scene.h Material::doubleSided, ray_scene.h Looker): whoever looks
+//  along a segment does not see the backs of single-sided surfaces (front: counter-clockwise,
+//  clockwise under a mirroring instance), as the rasterizer culls them in the camera's and every
+//  light's view. Camera rays pass through backs; a shadow ray towards a light or an emitting
+//  triangle passes through a surface whose back faces that emitter; a bounce stops on either side,
+//  and a back ends the path (it reflects nothing: the vertex behind it looks, and sees its front).
+//  Double-sided materials are shaded on the side the ray arrives from (surfaceAt).
 //
 //  Next-event estimation at every vertex (pbrt-v4 SampleLd):
 //   - point, spot and directional lights (delta lights): each of them, every time, with one shadow

@@ -20,11 +20,12 @@ namespace vplgi {
 
 namespace {
 
-// What the alpha-mask filter of one masked instance's geometry reads.
-struct MaskedGeometry {
+// What the filter of one instance's geometry reads (single-sided or alpha-masked ones have one).
+struct FilteredGeometry {
     const Scene* scene = nullptr;
     const Mesh* mesh = nullptr;
     const Material* material = nullptr;
+    float winding = 1.0f; // Instance::winding: -1 for a mirroring transform
 };
 
 } // namespace
@@ -32,7 +33,7 @@ struct MaskedGeometry {
 struct RayScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
-    std::vector<MaskedGeometry> masked; // sized once, so the user pointers stay valid
+    std::vector<FilteredGeometry> filtered; // sized once, so the user pointers stay valid
     ~Impl()
     {
         if (scene) rtcReleaseScene(scene);
@@ -48,14 +49,39 @@ void throwOnDeviceError(RTCDevice device, const char* what)
     require(error == RTC_ERROR_NONE, std::string("Embree: ") + what + " failed (error " + std::to_string(int(error)) + ")");
 }
 
-// Embree's intersection and occlusion filter for alpha-masked geometry: a hit where the mask cuts
-// the surface (glsl/shared/alpha_mask.h, at the hit's texture coordinate) is rejected and the ray goes
-// on, so closest hits, shadow rays and every sampler see the cut-out as the rasterizer draws it.
-void alphaMaskFilter(const RTCFilterFunctionNArguments* args)
+// The intersect context with the ray's Looker (Embree passes it to the filter).
+struct LookerContext {
+    RTCIntersectContext context; // first: Embree's pointer to it is a pointer to this
+    Looker looker = Looker::None;
+};
+
+// Embree's intersection and occlusion filter, so closest hits, shadow rays and every sampler see the
+// surfaces as the rasterizer draws them:
+//  - the back-face rule (Material::doubleSided, Looker): a hit on the side of a single-sided surface
+//    the looker does not see is rejected and the ray goes on (Embree's Ng is cross(p1 - p0, p2 - p0)
+//    of the world corners; Instance::winding turns it to the front);
+//  - alpha masks: a hit where the mask cuts the surface (glsl/shared/alpha_mask.h, at the hit's
+//    texture coordinate) is rejected.
+void surfaceFilter(const RTCFilterFunctionNArguments* args)
 {
-    const auto* geometry = static_cast<const MaskedGeometry*>(args->geometryUserPtr);
+    const auto* geometry = static_cast<const FilteredGeometry*>(args->geometryUserPtr);
+    const Looker looker = reinterpret_cast<const LookerContext*>(args->context)->looker;
+    const bool singleSided = !geometry->material->doubleSided && looker != Looker::None;
+    // The sign of dot(front normal, direction) whose hits are absent: > 0 (a back) for Origin.
+    const float absentSign = looker == Looker::Origin ? 1.0f : -1.0f;
+    const bool masked = geometry->material->isMasked();
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
+        if (singleSided) {
+            const float facing = RTCHitN_Ng_x(args->hit, args->N, i) * RTCRayN_dir_x(args->ray, args->N, i) +
+                                 RTCHitN_Ng_y(args->hit, args->N, i) * RTCRayN_dir_y(args->ray, args->N, i) +
+                                 RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
+            if (facing * geometry->winding * absentSign > 0.0f) { // the side the looker does not see
+                args->valid[i] = 0;
+                continue;
+            }
+        }
+        if (!masked) continue;
         const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
         const glm::vec2 barycentric(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
         if (!alphaMaskKeeps(*geometry->scene, *geometry->material, *geometry->mesh, static_cast<int>(triangle), barycentric))
@@ -71,7 +97,7 @@ RayScene::RayScene(const Scene& scene) : mScene(scene), mImpl(std::make_unique<I
     require(mImpl->device != nullptr, "Embree: cannot create a device");
     mImpl->scene = rtcNewScene(mImpl->device);
     rtcSetSceneBuildQuality(mImpl->scene, RTC_BUILD_QUALITY_HIGH);
-    mImpl->masked.reserve(scene.instances.size());
+    mImpl->filtered.reserve(scene.instances.size());
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[instance.mesh];
@@ -89,11 +115,11 @@ RayScene::RayScene(const Scene& scene) : mScene(scene), mImpl(std::make_unique<I
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
         const Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
-        if (material.isMasked()) {
-            mImpl->masked.push_back({&scene, &mesh, &material});
-            rtcSetGeometryUserData(geometry, &mImpl->masked.back());
-            rtcSetGeometryIntersectFilterFunction(geometry, alphaMaskFilter);
-            rtcSetGeometryOccludedFilterFunction(geometry, alphaMaskFilter);
+        if (!material.doubleSided || material.isMasked()) {
+            mImpl->filtered.push_back({&scene, &mesh, &material, instance.winding()});
+            rtcSetGeometryUserData(geometry, &mImpl->filtered.back());
+            rtcSetGeometryIntersectFilterFunction(geometry, surfaceFilter);
+            rtcSetGeometryOccludedFilterFunction(geometry, surfaceFilter);
         }
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(mImpl->scene, geometry, static_cast<unsigned>(i));
@@ -127,16 +153,17 @@ void fillRay(RTCRay& r, const Ray& ray)
 
 } // namespace
 
-Hit RayScene::intersect(const Ray& ray) const
+Hit RayScene::intersect(const Ray& ray, Looker looker) const
 {
-    if (RayRecorder* recorder = mRecorder.load(std::memory_order_relaxed)) recorder->add(ray, true);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    if (RayRecorder* recorder = mRecorder.load(std::memory_order_relaxed)) recorder->add(ray, true, looker);
+    LookerContext context;
+    rtcInitIntersectContext(&context.context);
+    context.looker = looker;
     RTCRayHit rayHit;
     fillRay(rayHit.ray, ray);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(mImpl->scene, &context, &rayHit);
+    rtcIntersect1(mImpl->scene, &context.context, &rayHit);
     Hit hit;
     if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
     hit.t = rayHit.ray.tfar;
@@ -147,31 +174,33 @@ Hit RayScene::intersect(const Ray& ray) const
     return hit;
 }
 
-bool RayScene::occluded(const Ray& ray) const
+bool RayScene::occluded(const Ray& ray, Looker looker) const
 {
-    if (RayRecorder* recorder = mRecorder.load(std::memory_order_relaxed)) recorder->add(ray, false);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    if (RayRecorder* recorder = mRecorder.load(std::memory_order_relaxed)) recorder->add(ray, false, looker);
+    LookerContext context;
+    rtcInitIntersectContext(&context.context);
+    context.looker = looker;
     RTCRay r;
     fillRay(r, ray);
-    rtcOccluded1(mImpl->scene, &context, &r);
+    rtcOccluded1(mImpl->scene, &context.context, &r);
     return r.tfar < 0.0f; // Embree sets tfar to -inf on a hit
 }
 
-bool RayScene::visible(const glm::vec3& a, const glm::vec3& b) const
+bool RayScene::visible(const glm::vec3& a, const glm::vec3& b, Looker looker) const
 {
     Ray ray;
     ray.origin = a;
     ray.direction = b - a;
     ray.tMin = 1e-4f;
     ray.tMax = 1.0f - 1e-4f;
-    return !occluded(ray);
+    return !occluded(ray, looker);
 }
 
 struct RayRecorder::Impl {
     struct Recorded {
         Ray ray;
         bool closestHit = false;
+        Looker looker = Looker::None;
     };
     tbb::enumerable_thread_specific<std::vector<Recorded>> perThread;
 };
@@ -179,9 +208,9 @@ struct RayRecorder::Impl {
 RayRecorder::RayRecorder() : mImpl(std::make_unique<Impl>()) {}
 RayRecorder::~RayRecorder() = default;
 
-void RayRecorder::add(const Ray& ray, bool closestHit)
+void RayRecorder::add(const Ray& ray, bool closestHit, Looker looker)
 {
-    mImpl->perThread.local().push_back({ray, closestHit});
+    mImpl->perThread.local().push_back({ray, closestHit, looker});
 }
 
 std::size_t RayRecorder::size() const
@@ -206,7 +235,8 @@ double RayRecorder::replay(const RayScene& rays) const
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
         std::uint64_t hits = 0;
         for (std::size_t i = r.begin(); i != r.end(); ++i)
-            hits += all[i].closestHit ? (rays.intersect(all[i].ray).valid() ? 1 : 0) : (rays.occluded(all[i].ray) ? 1 : 0);
+            hits += all[i].closestHit ? (rays.intersect(all[i].ray, all[i].looker).valid() ? 1 : 0)
+                                      : (rays.occluded(all[i].ray, all[i].looker) ? 1 : 0);
         sink.fetch_add(hits, std::memory_order_relaxed);
     });
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -32,6 +32,16 @@ struct Hit {
 
 class RayScene;
 
+// Who looks along a ray decides which single-sided surfaces it meets (the back-face rule, scene.h
+// Material::doubleSided; docs/back-faces.md): the looker does not see their backs, as the rasterizer
+// culls them in the camera's and in every light's and VPL's view.
+enum class Looker {
+    Origin, // the ray's origin looks (camera rays, rays leaving a light or a VPL): backs are absent
+    End,    // the far end looks (a shadow ray from a receiver to a light or a VPL): a surface whose
+            // front the ray reaches turns its back to the end, and is absent
+    None,   // both sides stop the ray (a path tracer's bounce, whose back is black; distances)
+};
+
 // The yardstick of "ray efficiency" (SMCIR Table 2's goal: at most a third of a CPU stage's time
 // goes to anything but rays): while a RayScene records into it, every ray cast (closest hit or
 // occlusion, with its origin, direction and interval) is kept in a per-thread buffer; replay() then
@@ -44,7 +54,7 @@ public:
     RayRecorder(const RayRecorder&) = delete;
     RayRecorder& operator=(const RayRecorder&) = delete;
 
-    void add(const Ray& ray, bool closestHit); // thread-safe
+    void add(const Ray& ray, bool closestHit, Looker looker); // thread-safe
     std::size_t size() const;                  // rays recorded (call when no ray is being cast)
     void clear();
     // Casts every recorded ray again, in parallel; returns the wall time [s].
@@ -62,10 +72,11 @@ public:
     RayScene(const RayScene&) = delete;
     RayScene& operator=(const RayScene&) = delete;
 
-    Hit intersect(const Ray& ray) const;
-    bool occluded(const Ray& ray) const;
-    // True when nothing blocks the open segment between a and b (ends excluded by relative epsilon).
-    bool visible(const glm::vec3& a, const glm::vec3& b) const;
+    Hit intersect(const Ray& ray, Looker looker = Looker::None) const;
+    bool occluded(const Ray& ray, Looker looker = Looker::None) const;
+    // True when nothing blocks the open segment from a to b (ends excluded by relative epsilon);
+    // Looker::Origin: a looks, Looker::End: b looks.
+    bool visible(const glm::vec3& a, const glm::vec3& b, Looker looker = Looker::None) const;
 
     // While set, every ray cast is also recorded (measurements only: set it when no other thread
     // casts rays that should not be counted; nullptr stops).

@@ -125,7 +125,7 @@ IRSampler::IRSampler(const Scene& scene, const RayScene& rays, const IRParams& p
             const glm::vec3 cross = glm::cross(e.p1 - e.p0, e.p2 - e.p0);
             const float twiceArea = glm::length(cross);
             if (!(twiceArea > 0.0f)) continue;
-            e.axis = cross / twiceArea;
+            e.axis = instance.winding() * cross / twiceArea; // the emitting front (Instance::winding)
             e.area = 0.5f * twiceArea;
             e.sides = material.doubleSided ? 2.0f : 1.0f;
             e.flux = kPi * e.sides * e.area * material.emission;
@@ -268,11 +268,11 @@ int IRSampler::tracePath(const std::vector<Emitter>& emitters, const std::vector
     int count = 0;
     for (int depth = 1; depth <= mParams.bounces; ++depth) {
         ++rays;
-        const Hit hit = mRays.intersect(ray);
+        const Hit hit = mRays.intersect(ray, Looker::Origin); // the light, then each VPL, looks forward
         if (!hit.valid()) break; // left the scene
         const glm::vec3 wo = -ray.direction;
         const SurfacePoint s = surfaceAt(mScene, hit, wo, vplMaterials());
-        if (glm::dot(s.geometricNormal, wo) <= 0.0f) break; // the back of a single-sided surface
+        if (glm::dot(s.geometricNormal, wo) <= 0.0f) break; // below the horizon (backs are not hit: ray_scene.cpp)
         // SMCIR 3.1's Lambert assumption for VPLs: the diffuse lobe, rho_d = (1 - metallic) baseColor.
         const glm::vec3 albedo = (1.0f - s.material.metallic) * s.material.baseColor;
         const glm::vec3 reflected = alpha * albedo;

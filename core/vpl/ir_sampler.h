@@ -35,8 +35,8 @@
 //  continue, a direction is drawn with density cos / pi about the shading normal, so the throughput
 //  is t = rho_d (the diffuse albedo); the path survives with q = min(1, lum(t)) and then carries
 //  alpha_{j+1} = alpha_j t / q. On grey surfaces alpha stays Phi / N for the whole path. A direction
-//  below the geometric horizon ends the path (the path tracer's rule), and so does a hit on the back
-//  of a single-sided surface (the rasterizer culls it; the path tracer ends there too): no deposit.
+//  below the geometric horizon ends the path (the path tracer's rule). The back of a single-sided
+//  surface is never hit: rays pass through it (the back-face rule, scene.h Material::doubleSided).
 //
 //  The VPL convention (core/vpl/vpl.h, MATH.md 1.4). The renderer computes
 //      L_ind(x) = (1/n) sum_i f(x) G(x, y_i) V(x, y_i) I(y_i),
@@ -66,8 +66,8 @@
 //
 //  The budget (issue 9 part 4: "report how much of it photons that leave the scene leave unused").
 //  The I slots are filled by deposits; every path emitted counts in N, including those that never
-//  deposit anything. Those "escaped" paths (the first ray left the scene, or ended on the back of a
-//  single-sided surface or on a black one) carry flux that lights nothing the camera could see: stat "ir: escaped
+//  deposit anything. Those "escaped" paths (the first ray left the scene, or ended below a
+//  surface's geometric horizon or on a black one) carry flux that lights nothing the camera could see: stat "ir: escaped
 //  fraction" = escaped paths / N is the part of the emitted power, and of the work, that the
 //  budget spent on nothing. A closed scene (the furnace) reports 0. N is a stopping time (paths are
 //  emitted until the slots are full), which biases the estimate by O(1/N), and the last path's

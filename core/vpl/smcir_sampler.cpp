@@ -242,11 +242,11 @@ void SMCIRSampler::castCameraRays(const Camera& camera, float aspect, std::vecto
         ray.direction = glm::vec3(direction);
         ray.tMin = static_cast<float>(std::max(0.0, glm::dot(nearPoint - eye, direction)));
         ray.tMax = static_cast<float>(glm::dot(farPoint - eye, direction));
-        const Hit hit = mRays.intersect(ray);
+        const Hit hit = mRays.intersect(ray, Looker::Origin); // the camera
         if (!hit.valid()) return;
         const glm::vec3 wo = -ray.direction;
         const SurfacePoint s = surfaceAt(mScene, hit, wo, vplMaterials());
-        if (glm::dot(s.geometricNormal, wo) <= 0.0f) return; // the back of a single-sided surface: culled
+        if (glm::dot(s.geometricNormal, wo) <= 0.0f) return; // below the horizon (backs are not hit: ray_scene.cpp)
         CameraPoint& point = found[cell];
         point.position = s.position;
         point.normal = s.geometricNormal;
@@ -280,7 +280,7 @@ std::vector<char> SMCIRSampler::resolveIndirectVisibility(const Camera& camera, 
         if (!(clip.w > 0.0f) || std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w || std::abs(clip.z) > clip.w)
             return;
         rays.fetch_add(1, std::memory_order_relaxed);
-        if (mRays.visible(camera.position, x.origin)) validated[slot] = 1;
+        if (mRays.visible(camera.position, x.origin, Looker::Origin)) validated[slot] = 1; // the camera looks
     });
 
     for (std::size_t slot = 0; slot < slotCount; ++slot)
@@ -316,7 +316,7 @@ std::vector<char> SMCIRSampler::resolveIndirectVisibility(const Camera& camera, 
                 if (glm::dot(x.normal, y - x.position) <= 0.0f) continue;
                 if (glm::dot(mSet.slots[slot].normal, x.position - y) <= 0.0f) continue;
                 ++cast;
-                if (mRays.visible(x.origin, mSlots[slot].origin))
+                if (mRays.visible(x.origin, mSlots[slot].origin, Looker::End)) // the VPL looks
                     success[i * chosenPerPoint + j] = static_cast<std::int32_t>(slot);
             }
             rays.fetch_add(cast, std::memory_order_relaxed);
@@ -365,7 +365,8 @@ std::vector<SMCIRSampler::Candidate> SMCIRSampler::sampleCandidates(const std::v
         Ray ray;
         ray.origin = x.origin;
         ray.direction = glm::normalize(sinTheta * std::cos(phi) * t + sinTheta * std::sin(phi) * b + cosTheta * x.normal);
-        const Hit hit = mRays.intersect(ray);
+        // A bounce from x (the path tracer's rule): either side stops it, a back reflects nothing.
+        const Hit hit = mRays.intersect(ray, Looker::None);
         if (!hit.valid()) return;
         const glm::vec3 wo = -ray.direction;
         const SurfacePoint s = surfaceAt(mScene, hit, wo, vplMaterials());

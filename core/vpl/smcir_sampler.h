@@ -35,7 +35,8 @@
 //  over the image, jittered anew every frame. They are cast with Embree, not read back from the
 //  G-buffer: the sampler runs on its own thread, decoupled from the GPU frame, and reading the
 //  G-buffer back would make it wait for the GPU (a sync point per frame) and tie it to the GPU's
-//  resolution. Hits on the back of single-sided surfaces are dropped (the rasterizer culls them).
+//  resolution. Rays pass through the back of single-sided surfaces, as the rasterizer culls them
+//  (the back-face rule, scene.h Material::doubleSided).
 //
 //  Indirect visibility (3.2.2, line 4): every VPL remembers an associated camera-visible point x
 //  that sees it (mail-boxing); at creation, the point whose ray found it. The scene is static for

@@ -52,7 +52,7 @@ glm::vec3 gatherVPLs(const RayScene& rays, const VPLSet& vpls, const SurfacePoin
         float geometry = cosX * cosY / distance2;
         if (params.clampGeometry > 0.0f) geometry = std::min(geometry, params.clampGeometry);
         // Visibility between the shading point and the VPL, both ends lifted off their surfaces.
-        if (!rays.visible(origin, vpl.position + vpl.normal * offset)) continue;
+        if (!rays.visible(origin, vpl.position + vpl.normal * offset, Looker::End)) continue; // the VPL looks
         sum += shared::evaluateBRDF(point.material, point.normal, wo, wi) * geometry * vpl.intensity();
     }
     // tile^2 / n (glsl/shared/vpl.h); the division keeps tile = 1 bit-identical to earlier releases.
@@ -79,7 +79,7 @@ ImageRGBA32F renderVPLGather(const Scene& scene, const RayScene& rays, const Cam
             ray.direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - ray.origin);
             float* out = image.at(x, y);
             out[3] = 1.0f;
-            const Hit hit = rays.intersect(ray);
+            const Hit hit = rays.intersect(ray, Looker::Origin); // the camera
             if (!hit.valid()) continue;
             const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
             const int tile = std::max(params.interleaveTile, 1);

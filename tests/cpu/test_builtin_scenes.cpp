@@ -119,7 +119,7 @@ TEST_CASE("builtin scenes: names, validity, default camera, source")
 {
     const std::vector<std::string> expected{"board",          "canyon",       "caustics",    "cornell",
                                             "cutout",         "furnace",      "glossy",      "maze",
-                                            "sealed",         "sealed-emissive", "sealed-point", "sealed-spot",
+                                            "one-sided",      "sealed",         "sealed-emissive", "sealed-point", "sealed-spot",
                                             "street"};
     REQUIRE(builtinSceneNames() == expected);
     CHECK_FALSE(isBuiltinScene("Cornell"));
@@ -145,7 +145,7 @@ TEST_CASE("builtin scenes: unknown name throws Error naming the choices")
 {
     CHECK_THROWS_AS(makeBuiltinScene("nope"), Error);
     CHECK_THROWS_WITH(makeBuiltinScene("nope"),
-                      "unknown scene \"nope\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
+                      "unknown scene \"nope\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, one-sided, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
 }
 
 TEST_CASE("builtin scenes: triangle winding agrees with the vertex normals")

@@ -1179,7 +1179,7 @@ TEST_CASE("scene file: errors name the file and the key", "[scene_loader]")
         "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0]}]})") ==
           path + ": cameras[0]: \"target\" must be an array of 3 numbers");
     CHECK(errorFor(R"({"source": "builtin:nope"})") ==
-          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
+          path + ": \"source\": unknown built-in scene \"nope\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, one-sided, sealed, sealed-emissive, sealed-point, sealed-spot, street)");
     CHECK(errorFor(R"({"source": "obj:x.obj"})") ==
           path + ": \"source\" must start with \"builtin:\" or \"gltf:\" (got \"obj:x.obj\")");
     CHECK(errorFor(R"({"name": "x"})") == path + ": needs a \"source\" (\"builtin:<name>\" or \"gltf:<path>\")");
@@ -1212,7 +1212,7 @@ TEST_CASE("loadSceneSpec resolves built-in names and paths", "[scene_loader]")
     CHECK_FALSE(cornell.scene.cameras.empty());
 
     CHECK(errorOf([] { vplgi::loadSceneSpec("cornel"); }) ==
-          "unknown scene \"cornel\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, sealed, sealed-emissive, sealed-point, sealed-spot, street; or a .json/.gltf/.glb path)");
+          "unknown scene \"cornel\" (built-in scenes: board, canyon, caustics, cornell, cutout, furnace, glossy, maze, one-sided, sealed, sealed-emissive, sealed-point, sealed-spot, street; or a .json/.gltf/.glb path)");
     const std::string missing = dir.file("missing.json");
     CHECK(errorOf([&] { vplgi::loadSceneSpec(missing); }) == missing + ": no such file");
 
