@@ -15,8 +15,10 @@ float parseNumber(const std::string& key, const std::string& value, float min, f
 {
     char* end = nullptr;
     const float v = std::strtof(value.c_str(), &end);
+    char range[64];
+    std::snprintf(range, sizeof range, "[%g, %g]", static_cast<double>(min), static_cast<double>(max));
     require(!value.empty() && *end == '\0' && std::isfinite(v) && v >= min && v <= max,
-            key + ": \"" + value + "\" is not a number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+            key + ": \"" + value + "\" is not a number in " + range + (key == "viewer.renderScale" ? " or auto" : ""));
     return v;
 }
 

@@ -406,22 +406,40 @@ void Viewer::applySoftwareDefaults()
     mSoftwareDefaults.clear();
     if (!gl::isSoftwareRenderer()) return;
     struct Lighter {
-        const char* technique; // a prefix of the technique's name
+        const char* technique;
         const char* key;
         const char* value;
     };
+    // On cornell at 320 x 180 (2 cores, `render` per-pass times): vsgl 2.0 s -> 0.34 s a frame, of it
+    // the BRSM PDF 0.72 s -> 0.05 s (RSM texels x view lights) and the radiance estimation 1.01 s ->
+    // 0.23 s (pixels x lights); vpl-brsm 1.9 s -> 0.32 s. lightskin on canyon 0.80 s -> 0.62 s (its
+    // interpolation, 0.25 s, and occlusion, 0.15 s, do not shrink with the budget).
     static const Lighter kLighter[] = {
         {"smcir", "smcir.mapsPerFrame", "64"}, // the shadow maps' first build spread over frames
         {"ir", "ir.mapsPerFrame", "64"},
         {"lightskin", "rsm.size", "256"}, // LightSkin's 1024^2 RSM (its VALs): 16x fewer texels
+        {"lightskin", "lightskin.valCount", "512"}, // proxy lights: 4x fewer VALs per cache (the paper: 2048)
+        {"lightskin-full", "rsm.size", "64"}, // every VAL lights every cache: 4096 of them
+        {"vsgl", "rsm.size", "128"},      // the BRSM's texels, 4x fewer
+        {"vsgl", "vsgl.count", "256"},    // lights per pixel, 4x fewer (the paper: 1024)
+        {"vsgl", "vsgl.viewLevel", "3"},  // the PDF's view lights, 8 x 8 instead of 16 x 16
+        {"vpl-brsm", "rsm.size", "128"},
+        {"vpl-brsm", "vpl-brsm.count", "256"},
+        {"vpl-brsm", "vpl-brsm.viewLevel", "3"},
     };
     ParamDumper current;
     mSession->renderer().visitParams(current);
     const std::string technique = mSession->techniqueName();
     for (const Lighter& l : kLighter)
-        if (technique.rfind(l.technique, 0) == 0 && current.values().count(l.key) && !mUserKeys.count(l.key))
+        if (technique == l.technique && current.values().count(l.key) && !mUserKeys.count(l.key))
             mSoftwareDefaults.emplace_back(l.key, l.value);
+    if (mSoftwareDefaults.empty()) return;
     mSession->renderer().applySettings(mSoftwareDefaults);
+    std::printf("software rasterizer: lighter defaults:");
+    for (const auto& [key, value] : mSoftwareDefaults)
+        std::printf(" %s=%s", key.c_str(), value.c_str());
+    std::printf(" (--set KEY=VALUE overrides)\n");
+    std::fflush(stdout);
 }
 
 void Viewer::switchTechnique(const std::string& name)

@@ -10,6 +10,7 @@ usage: make_bad_gltf.py DIR
 """
 import base64
 import json
+import math
 import os
 import struct
 import sys
@@ -54,6 +55,10 @@ class Gltf:
 
     def mesh(self, positions, normals=None, indices=None, material=None, name="floor"):
         attributes = {"POSITION": self.floats(positions)}
+        # POSITION's bounds, which glTF requires (the Khronos validator checks them: scripts/gltf-validate).
+        finite = [[v for v in positions[c::3] if math.isfinite(v)] for c in range(3)]
+        if all(finite):
+            self.doc["accessors"][attributes["POSITION"]].update(min=[min(f) for f in finite], max=[max(f) for f in finite])
         if normals is not None:
             attributes["NORMAL"] = self.floats(normals)
         primitive = {"attributes": attributes}

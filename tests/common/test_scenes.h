@@ -107,6 +107,18 @@ inline Scene glossyFloorScene()
     return scene;
 }
 
+// The path tracer's direct light at pixel centres, as the rasteriser samples them. For punctual
+// lights every sample through a pixel centre gives the same value: 4 spp.
+inline ImageRGBA32F directReference(const Scene& scene, const Camera& camera, int width, int height)
+{
+    RayScene rays(scene);
+    PathTracerParams params;
+    params.mode = PathTracerParams::Mode::Direct;
+    params.spp = 4;
+    params.jitterPixels = false;
+    return renderReference(scene, rays, camera, width, height, params).image;
+}
+
 // The one-bounce path tracer (what RSM techniques estimate) at pixel centres, as the rasteriser.
 inline ImageRGBA32F oneBounceReference(const Scene& scene, const Camera& camera, int width, int height, int spp,
                                        std::uint32_t seed = 1)

@@ -74,6 +74,13 @@ void writeFile(const std::string& path, const std::string& bytes)
     std::ofstream out(path, std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     REQUIRE(out.good());
+    // scripts/gltf-validate sets VPLGI_KEEP_TEST_FILES to validate what these tests write: a copy of
+    // each file, under the name of its test directory.
+    if (const char* keep = std::getenv("VPLGI_KEEP_TEST_FILES")) {
+        const fs::path relative = fs::relative(fs::path(path), fs::temp_directory_path());
+        fs::create_directories((fs::path(keep) / relative).parent_path());
+        fs::copy_file(path, fs::path(keep) / relative, fs::copy_options::overwrite_existing);
+    }
 }
 
 std::string base64(const std::string& bytes)

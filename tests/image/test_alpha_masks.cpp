@@ -37,16 +37,6 @@ Scene cutout(bool masked)
     return scene;
 }
 
-ImageRGBA32F directReference(const Scene& scene, const Camera& camera, int width, int height)
-{
-    RayScene rays(scene);
-    PathTracerParams params;
-    params.mode = PathTracerParams::Mode::Direct;
-    params.spp = 4; // a point light: every sample through a pixel centre gives the same value
-    params.jitterPixels = false;
-    return renderReference(scene, rays, camera, width, height, params).image;
-}
-
 // The technique's indirect light (radiance minus direct), mean luminance over the image. RSM 128^2
 // for LightSkin: lightskin-full's occlusion over every VAL of the default 1024^2 RSM takes a minute
 // on llvmpipe here.
@@ -84,8 +74,8 @@ TEST_CASE("alpha masks: the leaf's shadow on the floor is the path tracer's, lig
         const Scene masked = sun ? withSun(cutout(true)) : cutout(true);
         const Scene solid = sun ? withSun(cutout(false)) : cutout(false);
         const Camera& behind = cameraNamed(masked, "behind");
-        const ImageRGBA32F reference = directReference(masked, behind, width, height);
-        const double solidMean = test::meanLuminance(directReference(solid, behind, width, height));
+        const ImageRGBA32F reference = test::directReference(masked, behind, width, height);
+        const double solidMean = test::meanLuminance(test::directReference(solid, behind, width, height));
         if (!sun) CHECK(solidMean == 0.0);
         CHECK(test::meanLuminance(reference) > 0.05 + 1.3 * solidMean); // light passes the cut-away part
         // The shadow map's resolution dominates the error on this view, which is all shadow edges:

@@ -44,16 +44,6 @@ Scene oneSided(const std::string& variant)
     return scene;
 }
 
-ImageRGBA32F directReference(const Scene& scene, const Camera& camera, int width, int height)
-{
-    RayScene rays(scene);
-    PathTracerParams params;
-    params.mode = PathTracerParams::Mode::Direct;
-    params.spp = 4; // a point light: every sample through a pixel centre gives the same value
-    params.jitterPixels = false;
-    return renderReference(scene, rays, camera, width, height, params).image;
-}
-
 double meanIndirect(const std::string& technique, const Scene& scene, const Camera& camera, int width, int height)
 {
     Settings settings;
@@ -72,10 +62,10 @@ TEST_CASE("back faces: a single-sided panel seen from behind is absent in direct
     const Scene scene = oneSided("as is"), without = oneSided("without");
     for (const std::string view : {"default", "behind"}) {
         const Camera& camera = cameraNamed(scene, view);
-        const ImageRGBA32F reference = directReference(scene, camera, width, height);
+        const ImageRGBA32F reference = test::directReference(scene, camera, width, height);
         // The path tracer itself: from in front the away panel is absent (its back to the camera and
         // the light), so the image is the one without it; from behind its front is seen.
-        const double absent = test::relativeL1(reference, directReference(without, camera, width, height));
+        const double absent = test::relativeL1(reference, test::directReference(without, camera, width, height));
         if (view == "default") CHECK(absent == 0.0);
         else CHECK(absent > 0.05);
         // Cube maps at 2048 (shadow-edge error, as tests/image/test_alpha_masks.cpp measures it).
