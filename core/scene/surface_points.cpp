@@ -15,7 +15,6 @@ namespace {
 struct WorldTriangle {
     glm::vec3 p0, p1, p2;
     float winding = 1.0f;             // Instance::winding
-    bool singleSided = true;          // !Material::doubleSided
     const Material* masked = nullptr; // an alpha-masked material, else nullptr
     const Mesh* mesh = nullptr;       // and the triangle (masked only)
     int triangle = 0;
@@ -41,7 +40,6 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
             tri.p1 = glm::vec3(instance.worldFromObject * glm::vec4(mesh.vertices[mesh.indices[t + 1]].position, 1.0f));
             tri.p2 = glm::vec3(instance.worldFromObject * glm::vec4(mesh.vertices[mesh.indices[t + 2]].position, 1.0f));
             tri.winding = instance.winding();
-            tri.singleSided = !scene.materials[static_cast<std::size_t>(mesh.material)].doubleSided;
             const double area = 0.5 * static_cast<double>(glm::length(glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0)));
             if (!(area > 0.0)) continue; // degenerate triangles get no points (and have no normal)
             const Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
@@ -60,7 +58,6 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
 
     points.positions.reserve(static_cast<std::size_t>(count));
     points.normals.reserve(static_cast<std::size_t>(count));
-    points.singleSided.reserve(static_cast<std::size_t>(count));
     Pcg32 rng(mix64(seed), 0x15u);
     double blockOffset = 0.0;
     const double totalArea = points.totalArea;
@@ -115,7 +112,6 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
         }
         points.positions.push_back((1.0f - b1 - b2) * at->p0 + b1 * at->p1 + b2 * at->p2);
         points.normals.push_back(at->winding * glm::normalize(glm::cross(at->p1 - at->p0, at->p2 - at->p0))); // the front
-        points.singleSided.push_back(at->singleSided ? 1 : 0);
     }
     // The kept area: the acceptance rate of the draws estimates the fraction the masks keep.
     if (draws > static_cast<std::uint64_t>(count)) points.totalArea *= static_cast<double>(count) / static_cast<double>(draws);

@@ -20,7 +20,6 @@ namespace vplgi {
 struct SurfacePoints {
     std::vector<glm::vec3> positions; // world space [m]
     std::vector<glm::vec3> normals;   // unit geometric normals of the front (Instance::winding), world space
-    std::vector<std::uint8_t> singleSided; // 1: the point's material is single-sided (absent from behind)
     double totalArea = 0.0;           // world-space area of all triangles [m^2]; with alpha masks, the part
                                       // they keep as the draws estimate it (exact without masks)
 };

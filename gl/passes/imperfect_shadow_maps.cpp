@@ -24,7 +24,7 @@ namespace {
 // A point of passes/ism_splat.comp's buffer (std430 struct of a vec3 and a uint: 16 bytes).
 struct ISMPointRecord {
     glm::vec3 position;          // world [m]
-    std::uint32_t normalSnorm2x16; // octEncode'd unit geometric normal, packSnorm2x16'd; bit 0: single-sided
+    std::uint32_t normalSnorm2x16; // octEncode'd unit geometric normal, packSnorm2x16'd
 };
 static_assert(sizeof(ISMPointRecord) == 16, "ISMPointRecord must match std430");
 
@@ -114,11 +114,8 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
 {
     const SurfacePoints sample = sampleSurfacePoints(scene, mParams.points, mParams.seed, mParams.stratified ? mParams.pointsPerMap : 0);
     std::vector<ISMPointRecord> packed(sample.positions.size());
-    // Bit 0 (the lowest of the normal's x, 1/32767 of it) says the point is single-sided: the splat
-    // skips lights behind it (the back-face rule, Material::doubleSided).
     for (std::size_t i = 0; i < packed.size(); ++i)
-        packed[i] = ISMPointRecord{sample.positions[i],
-                                   (glm::packSnorm2x16(shared::octEncode(sample.normals[i])) & ~1u) | sample.singleSided[i]};
+        packed[i] = ISMPointRecord{sample.positions[i], glm::packSnorm2x16(shared::octEncode(sample.normals[i]))};
     mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(ISMPointRecord)),
                          packed.data(), false);
     mPointCount = static_cast<int>(packed.size());

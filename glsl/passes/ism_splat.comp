@@ -21,7 +21,7 @@ layout(binding = kImageISMMaps, r32ui) uniform uimage2DArray uMaps;
 
 struct ISMPoint {
     vec3 position;       // world [m]
-    uint normalSnorm2x16; // unit geometric normal of the front, octEncode'd and packSnorm2x16'd; bit 0: single-sided
+    uint normalSnorm2x16; // unit geometric normal, octEncode'd and packSnorm2x16'd
 };
 
 layout(std430, binding = kBindingISMPoints) readonly buffer Points {
@@ -65,15 +65,11 @@ void main()
         if (texel.x < 0) continue;
         float pointDistance = length(point - positionValid.xyz);
         if (pointDistance < ownRadius) continue;
-        // The back-face rule (scene.h, Material::doubleSided): a single-sided point is absent for a
-        // light behind it.
-        vec3 worldNormal = octDecode(unpackSnorm2x16(record.normalSnorm2x16));
-        if ((record.normalSnorm2x16 & 1u) != 0u && dot(worldNormal, point - positionValid.xyz) > 0.0) continue;
         imageAtomicMin(uMaps, texel, floatBitsToUint(pointDistance));
         if (!(uSplatRadius > 0.0)) continue;
         vec3 toPoint = transpose(frame) * (point - positionValid.xyz);
         float toPointLength = length(toPoint);
-        vec3 normal = transpose(frame) * worldNormal;
+        vec3 normal = transpose(frame) * octDecode(unpackSnorm2x16(record.normalSnorm2x16));
         vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
         mat2 ellipse = ismSplatEllipse(toPoint, normal, uSplatRadius, uMapSize);
         vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);

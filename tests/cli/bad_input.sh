@@ -101,7 +101,7 @@ error "missing.glb: no such file" render --scene missing.glb --out a.png
 error "$I/empty.gltf:1:1: invalid JSON" render --scene $I/empty.gltf "${S[@]}" --out a.png
 error "$I/empty.glb: Too short data size for glTF Binary" render --scene $I/empty.glb "${S[@]}" --out a.png
 error "$I/truncated.glb: Invalid glTF binary" render --scene $I/truncated.glb "${S[@]}" --out a.png
-error "$I/malformed.gltf:106:" render --scene $I/malformed.gltf "${S[@]}" --out a.png
+error "$I/malformed.gltf:116:" render --scene $I/malformed.gltf "${S[@]}" --out a.png
 error "$I/malformed.json:1:32: invalid JSON" render --scene $I/malformed.json "${S[@]}" --out a.png
 error "POSITION: accessor 0: data extends past the end of its buffer" render --scene $I/accessor-offset.gltf "${S[@]}" --out a.png
 error "POSITION: accessor 0: data extends past the end of its buffer" render --scene $I/stride-past-end.gltf "${S[@]}" --out a.png
