@@ -10,12 +10,7 @@
 set -eu
 vplgi="$(realpath "$1")"
 here="$(cd "$(dirname "$0")" && pwd)"
-check() { # check "what" python-expression
-  python3 -c "import sys; sys.exit(0 if ($2) else 1)" || { echo "FAIL: $1 ($2)"; exit 1; }
-  echo "ok: $1 ($2)"
-}
-work=$(mktemp -d); [ -z "${KEEP:-}" ] || echo "work: $work"
-trap '[ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
+. "$here/lib.sh" # check, $work
 command -v ffprobe >/dev/null || { echo "FAIL: ffmpeg is not installed (run ./scripts/deps)"; exit 1; }
 probe() { # probe FILE -> "frames rate width height"
   ffprobe -v error -count_frames -select_streams v:0 \

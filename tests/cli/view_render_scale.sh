@@ -9,12 +9,7 @@
 set -eu
 vplgi="$(realpath "$1")"
 here="$(cd "$(dirname "$0")" && pwd)"
-check() { # check "what" python-expression
-  python3 -c "import sys; sys.exit(0 if ($2) else 1)" || { echo "FAIL: $1 ($2)"; exit 1; }
-  echo "ok: $1 ($2)"
-}
-work=$(mktemp -d); [ -z "${KEEP:-}" ] || echo "work: $work"
-trap '[ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
+. "$here/lib.sh" # check, $work
 command -v xvfb-run >/dev/null || { echo "FAIL: xvfb-run is not installed (run ./scripts/deps)"; exit 1; }
 view() { # view NAME FRAMES [args...]: runs the viewer for FRAMES frames, stats in $work/NAME.csv
   local name="$1" frames="$2"; shift 2

@@ -12,12 +12,7 @@ set -eu
 vplgi="$1"
 here="$(cd "$(dirname "$0")" && pwd)"
 stats() { python3 "$here/png_stats.py" "$@"; }
-check() { # check "what" python-expression
-  python3 -c "import sys; sys.exit(0 if ($2) else 1)" || { echo "FAIL: $1 ($2)"; exit 1; }
-  echo "ok: $1 ($2)"
-}
-work=$(mktemp -d); [ -z "${KEEP:-}" ] || echo "work: $work"
-trap '[ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
+. "$here/lib.sh" # check, $work
 command -v xvfb-run >/dev/null || { echo "FAIL: xvfb-run is not installed (run ./scripts/deps)"; exit 1; }
 
 # Bad scripts fail before a window opens: one line naming FILE:LINE, exit status 1.
