@@ -11,13 +11,14 @@ namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct", "ir", "lightskin", "lightskin-full", "smcir", "smcir-rt", "vpl-brsm", "vsgl"};
+    return {"direct", "ir", "lightskin", "lightskin-full", "mir", "smcir", "smcir-rt", "vpl-brsm", "vsgl"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
 {
     if (name == "direct") return std::make_unique<DirectTechnique>();
     if (name == "ir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::IR);
+    if (name == "mir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::MIR);
     if (name == "lightskin") return std::make_unique<LightSkinTechnique>(false);
     if (name == "lightskin-full") return std::make_unique<LightSkinTechnique>(true);
     if (name == "smcir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::SMCIR);

@@ -59,16 +59,26 @@ VPLTechnique::~VPLTechnique() = default; // the pipeline joins its worker
 
 std::string_view VPLTechnique::name() const
 {
-    return mSource == Source::SMCIR ? "smcir" : "ir";
+    switch (mSource) {
+    case Source::SMCIR: return "smcir";
+    case Source::IR: return "ir";
+    case Source::MIR: return "mir";
+    }
+    return "ir";
 }
 
 void VPLTechnique::visitParams(ParamVisitor& v)
 {
     if (mSource == Source::SMCIR) {
         mSMCIR.visitParams(v);
-    } else {
+    } else if (mSource == Source::IR) {
         mIR.visitParams(v);
         v.field("ir.clampScale", mIRClampScale, 0.0f, 1000.0f,
+                "VPL clamping as smcir.clampScale: G_max = 1/d^2, d = clampScale * D / sqrt(I); 0 = none "
+                "(the paper's comparisons clamp every method alike)");
+    } else {
+        mMIR.visitParams(v);
+        v.field("mir.clampScale", mMIRClampScale, 0.0f, 1000.0f,
                 "VPL clamping as smcir.clampScale: G_max = 1/d^2, d = clampScale * D / sqrt(I); 0 = none "
                 "(the paper's comparisons clamp every method alike)");
     }
@@ -79,12 +89,18 @@ void VPLTechnique::visitParams(ParamVisitor& v)
 
 int VPLTechnique::vplCount() const
 {
-    return mSource == Source::SMCIR ? mSMCIR.vplCount : mIR.vplCount;
+    switch (mSource) {
+    case Source::SMCIR: return mSMCIR.vplCount;
+    case Source::IR: return mIR.vplCount;
+    case Source::MIR: return mMIR.vplCount;
+    }
+    return mIR.vplCount;
 }
 
 float VPLTechnique::clampGeometry() const
 {
     if (mSource == Source::SMCIR) return computeClampGeometry(mSMCIR, mRays->sceneScale());
+    if (mSource == Source::MIR) return clampGeometryFor(mMIRClampScale, mMIR.vplCount, mRays->sceneScale());
     return clampGeometryFor(mIRClampScale, mIR.vplCount, mRays->sceneScale());
 }
 
@@ -118,8 +134,10 @@ void VPLTechnique::startPipeline()
     std::unique_ptr<VPLSampler> sampler;
     if (mSource == Source::SMCIR)
         sampler = std::make_unique<SMCIRSampler>(*mScene, *mRays, mSMCIR);
-    else
+    else if (mSource == Source::IR)
         sampler = std::make_unique<IRSampler>(*mScene, *mRays, mIR);
+    else
+        sampler = std::make_unique<MIRSampler>(*mScene, *mRays, mMIR, clampGeometry());
     mPipeline = std::make_unique<VPLPipeline>(std::move(sampler), mRays);
 }
 
@@ -367,6 +385,11 @@ void VPLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
     for (const std::string& key : changedKeys) {
         if (key.rfind(p, 0) != 0) continue;
         const std::string field = key.substr(p.size());
+        // mir's sampler weighs its candidates with the clamp (core/vpl/mir_sampler.h): a new sampler.
+        if (mSource == Source::MIR && field == "clampScale") {
+            restart = true;
+            continue;
+        }
         if (cheap.count(field) || field.rfind("filter.", 0) == 0) continue;
         if (field == "shadowMapSize" || field == "shadowBatch")
             maps = true;
@@ -401,6 +424,11 @@ void VPLTechnique::configureReference(PathTracerParams& params, const std::set<s
     // IR as SMCIR (section 5 compares every method against the same reference). A VPL deposited at
     // hit j carries light reflected j times counting the one at the VPL: at most ir.bounces.
     // Every IR bounce is diffuse (rho_d cosine sampling, core/vpl/ir_sampler.h): diffuse at every vertex >= 1.
+    // MIR resamples IR's light paths (core/vpl/mir_sampler.h): the same light, the same reference.
+    if (mSource == Source::MIR) {
+        configureVPLReference(mMIR.texturedVPLs, clampGeometry(), mMIR.bounces, 2, params, explicitKeys);
+        return;
+    }
     configureVPLReference(mIR.texturedVPLs, clampGeometry(), mIR.bounces, 2, params, explicitKeys);
 }
 

@@ -59,6 +59,7 @@
 #include "../passes/vpl_shadow_maps.h"
 #include "core/trace/ray_scene.h"
 #include "core/vpl/ir_sampler.h"
+#include "core/vpl/mir_sampler.h"
 #include "core/vpl/smcir_sampler.h"
 #include "core/vpl/vpl_gather.h"
 #include "core/vpl/vpl_pipeline.h"
@@ -88,7 +89,7 @@ struct VPLRenderParams {
 
 class VPLTechnique final : public Technique {
 public:
-    enum class Source { SMCIR, IR };
+    enum class Source { SMCIR, IR, MIR };
     explicit VPLTechnique(Source source);
     ~VPLTechnique() override;
     std::string_view name() const override;
@@ -122,6 +123,8 @@ private:
     SMCIRParams mSMCIR;
     IRParams mIR;
     float mIRClampScale = 2.0f; // ir.clampScale: the same clamp as smcir.clampScale, for ir's budget
+    MIRParams mMIR;
+    float mMIRClampScale = 2.0f; // mir.clampScale: the same clamp, for mir's budget
     VPLRenderParams mRender;
     bool mSynchronous = false;
     const Scene* mScene = nullptr;

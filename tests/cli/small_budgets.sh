@@ -9,7 +9,7 @@ small_budgets() {
     lightskin) small=(--set rsm.size=128) ;;
     vsgl|vpl-brsm) small=(--set rsm.size=64) ;; # the BRSM importance: every texel of 11 layers x 256 view lights
     lightskin-full) small=(--set rsm.size=64) ;;
-    smcir|ir) small=(--set "$1.vplCount=256") ;;
+    smcir|ir|mir) small=(--set "$1.vplCount=256") ;;
     smcir-rt) small=(--set smcir.vplCount=256) ;;
   esac
 }

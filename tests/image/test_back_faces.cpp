@@ -48,6 +48,7 @@ double meanIndirect(const std::string& technique, const Scene& scene, const Came
 {
     Settings settings;
     if (technique.rfind("lightskin", 0) == 0) settings.emplace_back("rsm.size", "128"); // as test_alpha_masks
+    if (technique == "mir") settings.emplace_back("mir.resamplingRate", "64"); // as test_alpha_masks
     std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(scene, technique, settings);
     return test::meanLuminance(test::renderIndirect(*renderer, camera, width, height));
 }
