@@ -417,6 +417,8 @@ void Viewer::applySoftwareDefaults()
     static const Lighter kLighter[] = {
         {"smcir", "smcir.mapsPerFrame", "64"}, // the shadow maps' first build spread over frames
         {"ir", "ir.mapsPerFrame", "64"},
+        {"mir", "mir.mapsPerFrame", "64"},
+        {"mir", "mir.resamplingRate", "64"}, // 128 k light-path candidates instead of 512 k (the paper: 256:1)
         {"lightskin", "rsm.size", "256"}, // LightSkin's 1024^2 RSM (its VALs): 16x fewer texels
         {"lightskin", "lightskin.valCount", "512"}, // proxy lights: 4x fewer VALs per cache (the paper: 2048)
         {"lightskin-full", "rsm.size", "64"}, // every VAL lights every cache: 4096 of them

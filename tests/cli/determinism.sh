@@ -61,6 +61,7 @@ for t in $techniques; do
   case "$t" in
     smcir|smcir-rt) prefix=smcir ;;
     ir) prefix=ir ;;
+    mir) prefix=mir ;;
     *) prefix= ;;
   esac
   if [ -n "$prefix" ]; then
