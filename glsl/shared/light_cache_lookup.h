@@ -224,14 +224,12 @@ VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float
                         vec3 offset = x - lightCachePosition(VPLGI_CACHES cache);
                         float d2 = dot(offset, offset);
                         if (!(d2 < radius2)) continue;
-                        // A candidate that would not enter the k nearest found so far is dropped before the
-                        // reach test (the set is the same either way; the test is the lookup's dearest part).
-                        if (result.count == slots &&
-                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
-                            continue;
                         if (pass == 0 &&
                             (!(dot(n, cacheNormal) > kLightCacheReachMinCos) ||
                              !lightCacheReaches(lightCacheReach(VPLGI_CACHES cache), cacheNormal, offset, cellSize)))
+                            continue;
+                        if (result.count == slots &&
+                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
                             continue;
                         // Insertion: shift the farther entries one slot up (the last one drops out when full).
                         int j = min(result.count, slots - 1);
