@@ -19,6 +19,7 @@
 #include "core/vpl/vpl_gather.h"
 #include "core/vpl/vpl_pipeline.h"
 #include "measured.h"
+#include "vpl_sets.h"
 
 using namespace vplgi;
 
@@ -34,25 +35,8 @@ MIRParams mirParams(int vplCount, int rate, int bounces, std::uint32_t seed = 1)
     return params;
 }
 
-double meanGreen(const ImageRGBA32F& image)
-{
-    double sum = 0.0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) sum += image.at(x, y)[1];
-    return sum / (static_cast<double>(image.width) * image.height);
-}
-
-bool identicalSets(const VPLSet& a, const VPLSet& b)
-{
-    if (a.slots.size() != b.slots.size()) return false;
-    for (std::size_t i = 0; i < a.slots.size(); ++i) {
-        const VPL &u = a.slots[i], &v = b.slots[i];
-        if (u.valid != v.valid || u.position != v.position || u.normal != v.normal || u.radiance != v.radiance ||
-            u.density != v.density)
-            return false;
-    }
-    return true;
-}
+using test::identicalSets;
+using test::meanGreen;
 
 } // namespace
 
