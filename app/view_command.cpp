@@ -421,6 +421,7 @@ void Viewer::applySoftwareDefaults()
         {"mir", "mir.resamplingRate", "64"}, // 128 k light-path candidates instead of 512 k (the paper: 256:1)
         {"lightskin", "rsm.size", "256"}, // LightSkin's 1024^2 RSM (its VALs): 16x fewer texels
         {"lightskin", "lightskin.valCount", "512"}, // proxy lights: 4x fewer VALs per cache (the paper: 2048)
+        {"lightskin", "lightskin.cacheTarget", "1024"}, // half the caches: proxy lights 2x, occlusion ~4x cheaper
         {"lightskin-full", "rsm.size", "64"}, // every VAL lights every cache: 4096 of them
         {"vsgl", "rsm.size", "128"},      // the BRSM's texels, 4x fewer
         {"vsgl", "vsgl.count", "256"},    // lights per pixel, 4x fewer (the paper: 1024)

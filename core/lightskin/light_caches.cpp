@@ -28,7 +28,9 @@ void LightCacheParams::visitParams(ParamVisitor& v)
 {
     v.field("lightskin.cacheDistance", distance, 0.0f, 1e4f,
             "d_eps: largest distance between a light cache and the surface it represents [m]; "
-            "0 = automatic, 2 sqrt(A / 2048) for the scene's surface area A");
+            "0 = automatic, 2 sqrt(A / N) for the scene's surface area A and N = lightskin.cacheTarget");
+    v.field("lightskin.cacheTarget", target, 16, 1 << 20,
+            "N of the automatic d_eps: about the light caches a flat scene gets (not in the paper)");
     v.field("lightskin.cacheAngle", angleDegrees, 1.0f, 89.0f,
             "theta_eps: largest angle between a light cache's normal and its surface's normals [degrees]");
     v.field("lightskin.cacheSnap", snap, "move each light cache onto the surface it averaged (paper step 4)");
@@ -41,7 +43,6 @@ constexpr int kBinsPerFaceEdge = 8;       // step 2: 6 x 8 x 8 direction bins
 constexpr double kSplitEpsilon = 1e-4;    // [fine voxel edges]: see splitAlong
 constexpr std::uint32_t kFileVersion = 2; // bump when the distribution or the file layout changes (2: the key inside)
 constexpr char kFileMagic[8] = {'V', 'P', 'L', 'G', 'L', 'S', 'C', 'A'};
-constexpr int kAutomaticCacheTarget = 2048; // caches on a flat scene under the automatic d_eps
 constexpr double kMaxPieces = 1e7;          // step 1 pieces per instance (one at a time): about 2 GB
 
 // The geometry of one cache before the material is attached (what the disk cache stores).
@@ -732,7 +733,8 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
     const double area = sceneSurfaceArea(scene);
     require(area > 0.0 && std::isfinite(area),
             "light caches: scene '" + scene.name + "' has no surface area for the automatic d_eps");
-    const double raw = 2.0 * std::sqrt(area / kAutomaticCacheTarget);
+    require(params.target >= 16 && params.target <= (1 << 20), "light caches: lightskin.cacheTarget must be in [16, 1048576]");
+    const double raw = 2.0 * std::sqrt(area / params.target);
     const double scale = std::pow(10.0, std::floor(std::log10(raw)) - 1.0);
     return static_cast<float>(std::round(raw / scale) * scale);
 }

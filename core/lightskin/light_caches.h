@@ -51,6 +51,9 @@ struct LightCacheParams {
     // rounded to two significant digits (a flat scene of area A then gets about 2048 caches; see
     // resolveLightCacheDistance).
     float distance = 0.0f;
+    // N of the automatic d_eps = 2 sqrt(A / N) (ours, not in the paper): about the caches a flat scene
+    // gets. The viewer on a software rasterizer halves it (app/view_command.cpp).
+    int target = 2048;
     // theta_eps [degrees]. The paper gives no value. 30: the caches of two faces meeting at 90 degrees
     // (the corners of our architectural scenes) never mix (that needs an angle >= 45), a tessellated
     // curve of radius R merges into one cache per voxel once R > about 2 voxel edges, and the
