@@ -11,7 +11,7 @@ namespace vplgi {
 
 std::vector<std::string> techniqueNames()
 {
-    return {"direct", "ir", "lightskin", "lightskin-full", "mir", "smcir", "smcir-rt", "vpl-brsm", "vsgl"};
+    return {"direct", "ir", "lightskin", "lightskin-full", "mir", "smcir", "smcir-rt", "tcas", "vpl-brsm", "vsgl"};
 }
 
 std::unique_ptr<Technique> createTechnique(std::string_view name)
@@ -23,8 +23,9 @@ std::unique_ptr<Technique> createTechnique(std::string_view name)
     if (name == "lightskin-full") return std::make_unique<LightSkinTechnique>(true);
     if (name == "smcir") return std::make_unique<VPLTechnique>(VPLTechnique::Source::SMCIR);
     if (name == "smcir-rt") return std::make_unique<SMCIRRayTracedTechnique>();
-    if (name == "vsgl") return std::make_unique<VSGLTechnique>(false);
-    if (name == "vpl-brsm") return std::make_unique<VSGLTechnique>(true);
+    if (name == "vsgl") return std::make_unique<VSGLTechnique>(VSGLParams::VSGL);
+    if (name == "vpl-brsm") return std::make_unique<VSGLTechnique>(VSGLParams::VPLBRSM);
+    if (name == "tcas") return std::make_unique<VSGLTechnique>(VSGLParams::TCAS);
     std::string known;
     for (const std::string& n : techniqueNames()) known += (known.empty() ? "" : ", ") + n;
     throw Error("unknown technique \"" + std::string(name) + "\" (known: " + known + ")");

@@ -13,9 +13,13 @@
 
 namespace vplgi {
 
-void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLights)
+void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, Kind kind)
 {
-    v.field(p + ".count", count, 1, 65536, "N: lights drawn from the BRSM per frame (VSGL section 4: 1024)");
+    const bool pointLights = kind != VSGL;
+    if (kind == TCAS)
+        v.field(p + ".count", count, 1, 65536, "N: VPLs, one Metropolis-Hastings chain each (1024 as vpl-brsm's)");
+    else
+        v.field(p + ".count", count, 1, 65536, "N: lights drawn from the BRSM per frame (VSGL section 4: 1024)");
     if (!pointLights) {
         v.field(p + ".smoothness", smoothness, 1e-3f, 1e6f,
                 "k: the footprints of the N lights cover the RSM k times; picks the mip level (section 3.2; 4)");
@@ -39,21 +43,31 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, bool pointLi
             "PDF of BRSMs: the G-buffer grid acting as the light [texels], a power of two (not in the paper)");
     v.field(p + ".viewLevel", viewLevel, 0, 12,
             "PDF of BRSMs: the grid's mip level whose texels are the view lights ((viewGrid / 2^level)^2 lights)");
-    v.field(p + ".seed", seed, "seed of the draws");
-    v.field(p + ".animateSeed", animateSeed, "new draws every frame (default: the same uniforms every frame)");
+    if (kind == TCAS) {
+        v.field(p + ".iterations", iterations, 0, 1024,
+                "Metropolis-Hastings iterations of every chain per frame (SMCIR section 5.1: 16; Barak et al.: 5)");
+        v.field(p + ".globalProbability", proposal.globalProbability, 0.0f, 1.0f,
+                "probability of a proposal uniform over the RSMs, else a local step (not in the papers; docs/tcas.md)");
+        v.field(p + ".stepRadius", proposal.stepRadius, 1, 64,
+                "local proposals: offsets uniform in [-r, r]^2 RSM texels (not in the papers; docs/tcas.md)");
+        v.field(p + ".seed", seed, "seed of the chains' first draws and of their steps (new uniforms every frame)");
+    } else {
+        v.field(p + ".seed", seed, "seed of the draws");
+        v.field(p + ".animateSeed", animateSeed, "new draws every frame (default: the same uniforms every frame)");
+    }
     v.choice(p + ".visibility", visibility, {"ism", "none"},
              "light visibility: imperfect shadow maps (the paper's AISMs without view adaptation) or none");
     ism.visitParams(v, p + ".ism");
     rsm.visitParams(v);
 }
 
-VSGLTechnique::VSGLTechnique(bool pointLights) : mPointLights(pointLights) {}
+VSGLTechnique::VSGLTechnique(VSGLParams::Kind kind) : mKind(kind), mPointLights(kind != VSGLParams::VSGL) {}
 
 VSGLTechnique::~VSGLTechnique() = default;
 
 void VSGLTechnique::visitParams(ParamVisitor& v)
 {
-    mParams.visitParams(v, std::string(name()), mPointLights);
+    mParams.visitParams(v, std::string(name()), mKind);
 }
 
 void VSGLTechnique::createPasses(const gl::ShaderLoader& shaders)
@@ -61,6 +75,10 @@ void VSGLTechnique::createPasses(const gl::ShaderLoader& shaders)
     // Only VSGL's footprints read the RSM's mips; vpl-brsm's VPLs read level 0.
     mRSM = std::make_unique<RSMPass>(shaders, mPointLights ? RSMMips::None : RSMMips::All);
     mSampler = std::make_unique<ImportanceSampler>(shaders, "BRSM sampler");
+    if (mKind == VSGLParams::TCAS) {
+        mChains = std::make_unique<MetropolisChains>(shaders, "TCAS chains");
+        mChainsStarted = false;
+    }
     mViewRSMPass = ComputePass(shaders, "G-buffer as light", "passes/vsgl_view_rsm.comp");
     mGeneratePass = ComputePass(shaders, mPointLights ? "VPL generation" : "VSGL generation", "passes/vsgl_generate.comp");
     mNoImportance = gl::Texture::placeholder("no importance", GL_TEXTURE_2D, GL_R32F);
@@ -95,8 +113,11 @@ void VSGLTechnique::applyParamChanges(const std::set<std::string>& changedKeys)
 {
     // The maps are sized for N lights and hold the point set: remade on the next render().
     const std::string p = std::string(name()) + ".";
-    for (const std::string& key : changedKeys)
+    for (const std::string& key : changedKeys) {
         if (key == p + "count" || key.rfind(p + "ism", 0) == 0) mISM.reset();
+        // tcas: a new count or seed starts the chains again from draws.
+        if (key == p + "count" || key == p + "seed") mChainsStarted = false;
+    }
 }
 
 void VSGLTechnique::update(const FrameContext&) {}
@@ -175,6 +196,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
             desc.height = size;
             desc.levels = mRSM->levelCount(); // box mips within one layer (vsgl.footprint = cell)
             mImportance = gl::Texture("BRSM importance", desc);
+            mChainsStarted = false; // tcas: the chains' texels index the old map
         }
         bindRSMLayout(mRSM->target(), false);
         bindImage(shared::kImageImportance, mImportance, GL_WRITE_ONLY);
@@ -189,9 +211,24 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
 
         // 3. The tables and N draws (MATH.md 9.7).
         mSampler->build(mImportance, NextRead::None);
-        const std::uint32_t seed = mParams.animateSeed ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
-                                                       : mParams.seed;
-        mSampler->sample(mImportance, mCount, seed, NextRead::StorageBuffer);
+        if (mKind == VSGLParams::TCAS) {
+            // tcas: the chains, started once from N draws (the map's size and N fixed since), then
+            // tcas.iterations Metropolis-Hastings steps per frame with new uniforms every frame.
+            if (mChains->count() != mCount) mChainsStarted = false;
+            if (!mChainsStarted) {
+                mSampler->sample(mImportance, mCount, mParams.seed, NextRead::StorageBuffer);
+                mChains->start(mImportance, *mSampler, mCount, NextRead::StorageBuffer);
+                mChainsStarted = true;
+            }
+            mChains->step(mImportance, *mSampler, mParams.iterations,
+                          shared::hashPcg(mParams.seed ^ shared::hashPcg(frame.frameIndex + 1u)), mParams.proposal,
+                          NextRead::StorageBuffer);
+        } else {
+            const std::uint32_t seed = mParams.animateSeed
+                                           ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
+                                           : mParams.seed;
+            mSampler->sample(mImportance, mCount, seed, NextRead::StorageBuffer);
+        }
         if (cells) {
             // The cells' probabilities: 2x2 means up the chain, our own pass (power-of-two layers: no
             // cell straddles two; issue "VSGL made exact", part 4).
@@ -203,7 +240,8 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         const auto bytes = static_cast<GLsizeiptr>(mCount) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
         if (mLights.size() < bytes) mLights = gl::Buffer(prefix + " lights", bytes);
         bindRSMLayout(mRSM->target(), !mPointLights);
-        bindStorageBuffer(shared::kBindingImportanceSamples, mSampler->samples());
+        bindStorageBuffer(shared::kBindingImportanceSamples,
+                          mKind == VSGLParams::TCAS ? mChains->samples() : mSampler->samples());
         bindStorageBuffer(shared::kBindingVSGLights, mLights);
         const gl::Program& generate = mGeneratePass.program();
         generate.set("uMode", mPointLights ? 1 : 0);
@@ -253,9 +291,12 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
 
 std::vector<std::pair<std::string, double>> VSGLTechnique::frameStats() const
 {
-    return {{mPointLights ? "vpls" : "vsgls", static_cast<double>(mCount)},
+    std::vector<std::pair<std::string, double>> stats{{mPointLights ? "vpls" : "vsgls", static_cast<double>(mCount)},
             {"view lights", static_cast<double>(mViewLightCount)},
             {"rsm layers", static_cast<double>(mRSM ? mRSM->layerCount() : 0)}};
+    if (mKind == VSGLParams::TCAS && mChains && mChainsStarted)
+        stats.emplace_back("vplsMoved", static_cast<double>(mChains->movedInLastStep()));
+    return stats;
 }
 
 std::vector<DebugView> VSGLTechnique::debugViews() const

@@ -5,6 +5,12 @@
 // paper's comparisons: `vsgl` turns each sample into a virtual spherical Gaussian light read from
 // the RSM mips, `vpl-brsm` into a virtual point light (eq. 1) at the sampled texel.
 //
+// Technique `tcas` (the SMCIR paper's TCAS baseline, Barak et al. 2013, its [26]; docs/tcas.md) is
+// `vpl-brsm` with the N independent draws replaced by N Metropolis-Hastings chains over the same
+// BRSM importance map, carried from frame to frame (gl/passes/metropolis_chains.h): 16 iterations
+// per frame (SMCIR section 5.1; the original's 5 with tcas.iterations=5), one bounce, visibility
+// ignored by the importance, imperfect shadow maps (or none) for the VPLs' shadows.
+//
 // Intro
 // -----
 // VPLs from an RSM show spikes near surfaces and on glossy receivers (the 1/d^2 and the BRDF peak of
@@ -61,6 +67,7 @@
 #include "../passes/fullscreen_pass.h"
 #include "../passes/imperfect_shadow_maps.h"
 #include "../passes/importance_sampler.h"
+#include "../passes/metropolis_chains.h"
 #include "../passes/rsm_pass.h"
 #include "technique.h"
 
@@ -93,14 +100,22 @@ struct VSGLParams {
     ISMParams ism;              // keys <technique>.ism* (section 4: 8192 points, 64^2 per map)
     RSMParams rsm;              // key rsm.size (section 4: 256^2)
 
-    void visitParams(ParamVisitor& visitor, const std::string& prefix, bool pointLights);
+    // tcas only (gl/passes/metropolis_chains.h): the chains' iterations per frame and proposal.
+    int iterations = 16;        // SMCIR section 5.1: 16 (Barak et al.: 5)
+    MetropolisProposal proposal;
+
+    enum Kind { VSGL, VPLBRSM, TCAS };
+    void visitParams(ParamVisitor& visitor, const std::string& prefix, Kind kind);
 };
 
 class VSGLTechnique final : public Technique {
 public:
-    explicit VSGLTechnique(bool pointLights);
+    explicit VSGLTechnique(VSGLParams::Kind kind);
     ~VSGLTechnique() override;
-    std::string_view name() const override { return mPointLights ? "vpl-brsm" : "vsgl"; }
+    std::string_view name() const override
+    {
+        return mKind == VSGLParams::TCAS ? "tcas" : mKind == VSGLParams::VPLBRSM ? "vpl-brsm" : "vsgl";
+    }
     void setScene(const SceneContext& context) override;
     void update(const FrameContext& frame) override;
     void render(const FrameContext& frame, const GBuffer& gbuffer, const IndirectTarget& target) override;
@@ -116,17 +131,21 @@ public:
     const RSMPass& rsm() const { return *mRSM; }
     const gl::Buffer& lights() const { return mLights; }
     const gl::Texture& importance() const { return mImportance; }
+    const MetropolisChains* chains() const { return mChains.get(); } // tcas
 
 private:
     void createPasses(const gl::ShaderLoader& shaders);
 
-    bool mPointLights;
+    VSGLParams::Kind mKind;
+    bool mPointLights; // vpl-brsm and tcas
     VSGLParams mParams;
     const Scene* mScene = nullptr;
     const gl::ShaderLoader* mShaders = nullptr;
     const GpuScene* mGpuScene = nullptr;
     std::unique_ptr<RSMPass> mRSM;
     std::unique_ptr<ImportanceSampler> mSampler;
+    std::unique_ptr<MetropolisChains> mChains; // tcas
+    bool mChainsStarted = false;               // false: the next frame starts the chains from draws
     ComputePass mViewRSMPass;
     ComputePass mGeneratePass;
     ComputePass mImportancePass;
