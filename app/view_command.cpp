@@ -429,6 +429,9 @@ void Viewer::applySoftwareDefaults()
         {"vpl-brsm", "rsm.size", "128"},
         {"vpl-brsm", "vpl-brsm.count", "256"},
         {"vpl-brsm", "vpl-brsm.viewLevel", "3"},
+        {"tcas", "rsm.size", "128"}, // tcas: vpl-brsm's passes with chains instead of draws
+        {"tcas", "tcas.count", "256"},
+        {"tcas", "tcas.viewLevel", "3"},
     };
     ParamDumper current;
     mSession->renderer().visitParams(current);

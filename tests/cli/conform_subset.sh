@@ -20,7 +20,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$vplgi" conform --scenes cornell,glossy,furnace,sealed --techniques all --seeds 2 --width 24 --height 16 --spp 256 \
   --set smcir.vplCount=256 --set smcir.warmupIterations=40 --set ir.vplCount=256 --set mir.vplCount=256 --set rsm.size=64 \
-  --set vsgl.count=256 --set vpl-brsm.count=256 --cache "$work/cache" --out "$work/c" > "$work/table.md" 2> "$work/err.log" \
+  --set vsgl.count=256 --set vpl-brsm.count=256 --set tcas.count=256 --cache "$work/cache" --out "$work/c" > "$work/table.md" 2> "$work/err.log" \
   || { cat "$work/err.log"; exit 1; }
 cat "$work/table.md"
 python3 - "$work/c/conform.json" "$expected" "$update" <<'PY'

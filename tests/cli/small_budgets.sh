@@ -7,7 +7,7 @@ small_budgets() {
     # light's six cube faces, the emissive panel's five), and lightskin-full shades every texel of
     # them at every cache.
     lightskin) small=(--set rsm.size=128) ;;
-    vsgl|vpl-brsm) small=(--set rsm.size=64) ;; # the BRSM importance: every texel of 11 layers x 256 view lights
+    vsgl|vpl-brsm|tcas) small=(--set rsm.size=64) ;; # the BRSM importance: every texel of 11 layers x 256 view lights
     lightskin-full) small=(--set rsm.size=64) ;;
     smcir|ir|mir) small=(--set "$1.vplCount=256") ;;
     smcir-rt) small=(--set smcir.vplCount=256) ;;
