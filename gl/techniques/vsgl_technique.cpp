@@ -222,7 +222,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
             }
             mChains->step(mImportance, *mSampler, mParams.iterations,
                           shared::hashPcg(mParams.seed ^ shared::hashPcg(frame.frameIndex + 1u)), mParams.proposal,
-                          NextRead::StorageBuffer);
+                          NextRead::StorageBuffer, &frame.timer);
         } else {
             const std::uint32_t seed = mParams.animateSeed
                                            ? shared::hashPcg(mParams.seed ^ (frame.frameIndex * 0x9E3779B9u))
