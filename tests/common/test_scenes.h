@@ -4,10 +4,12 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/scene/scene.h"
+#include "core/scene/surface.h"
 #include "core/trace/path_tracer.h"
 #include "core/trace/ray_scene.h"
 #include "core/util/image_io.h"
@@ -130,6 +132,26 @@ inline ImageRGBA32F oneBounceReference(const Scene& scene, const Camera& camera,
     params.seed = seed;
     params.jitterPixels = false;
     return renderReference(scene, rays, camera, width, height, params).image;
+}
+
+// The pixels whose primary hit (through the pixel centre) is a downward-facing surface that does not
+// emit: a box's ceiling, which sees no light but bounced light when the lights hang below it or are
+// the ceiling's own emitter.
+inline std::vector<glm::ivec2> ceilingPixels(const Scene& scene, const Camera& camera, int width, int height)
+{
+    RayScene rays(scene);
+    const CameraRays cameraRays(camera, width, height);
+    std::vector<glm::ivec2> pixels;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const Ray ray = cameraRays.at(x + 0.5, y + 0.5);
+            const Hit hit = rays.intersect(ray);
+            if (!hit.valid()) continue;
+            const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
+            if (s.normal.y > -0.9f || glm::dot(s.emission, glm::vec3(1.0f)) > 0.0f) continue;
+            pixels.emplace_back(x, y);
+        }
+    return pixels;
 }
 
 // Luminance (Rec. 709) of one RGB(A) pixel.

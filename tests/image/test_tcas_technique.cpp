@@ -10,9 +10,6 @@
 #include <vector>
 
 #include "core/scene/builtin_scenes.h"
-#include "core/scene/surface.h"
-#include "core/trace/path_tracer.h"
-#include "core/trace/ray_scene.h"
 #include "gl/renderer.h"
 #include "gl/techniques/vsgl_technique.h"
 #include "buffer_readback.h"
@@ -106,21 +103,13 @@ TEST_CASE("tcas lights cornell's ceiling with bounced light like the one-bounce 
     ImageRGBA32F image;
     for (int frame = 0; frame < 3; ++frame) image = test::renderIndirect(*renderer, camera, width, height);
     const ImageRGBA32F truth = test::oneBounceReference(scene, camera, width, height, 1024);
-    RayScene rays(scene);
-    const CameraRays cameraRays(camera, width, height);
     double tcas = 0.0, path = 0.0;
-    int count = 0;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const Ray ray = cameraRays.at(x + 0.5, y + 0.5);
-            const Hit hit = rays.intersect(ray);
-            if (!hit.valid()) continue;
-            const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
-            if (s.normal.y > -0.9f || glm::dot(s.emission, glm::vec3(1.0f)) > 0.0f) continue;
-            tcas += test::pixelLuminance(image.at(x, y));
-            path += test::pixelLuminance(truth.at(x, y));
-            ++count;
-        }
+    const std::vector<glm::ivec2> ceiling = test::ceilingPixels(scene, camera, width, height);
+    const int count = static_cast<int>(ceiling.size());
+    for (const glm::ivec2& p : ceiling) {
+        tcas += test::pixelLuminance(image.at(p.x, p.y));
+        path += test::pixelLuminance(truth.at(p.x, p.y));
+    }
     REQUIRE(count > 20);
     const double relative = tcas / path - 1.0;
     MEASURED("cornell ceiling (" << count << " px), 3 frames, N = 1024, RSM 128^2: tcas " << tcas / count

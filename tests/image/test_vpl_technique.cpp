@@ -459,26 +459,15 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     // The same part of the light transport from the path tracer: light reflected 1 to 3 times
     // before the primary hit (the sampler's 3 radiosity bounces), clamped and untextured as the
     // technique asks (Technique::configureReference).
-    RayScene rays(scene);
     const ImageRGBA32F truth = clampedReference(scene, *renderer, camera, width, height, 1024);
 
-    // Ceiling pixels: primary hits on a downward-facing surface that does not emit.
-    const CameraRays cameraRays(camera, width, height);
     double smcir = 0.0, path = 0.0;
-    int count = 0;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const Ray ray = cameraRays.at(x + 0.5, y + 0.5);
-            const Hit hit = rays.intersect(ray);
-            if (!hit.valid()) continue;
-            const SurfacePoint s = surfaceAt(scene, hit, -ray.direction);
-            if (s.normal.y > -0.9f || glm::dot(s.emission, glm::vec3(1.0f)) > 0.0f) continue;
-            const float* p = gpu.indirect.at(x, y);
-            const float* q = truth.at(x, y);
-            smcir += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-            path += 0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2];
-            ++count;
-        }
+    const std::vector<glm::ivec2> ceiling = test::ceilingPixels(scene, camera, width, height);
+    const int count = static_cast<int>(ceiling.size());
+    for (const glm::ivec2& p : ceiling) {
+        smcir += test::pixelLuminance(gpu.indirect.at(p.x, p.y));
+        path += test::pixelLuminance(truth.at(p.x, p.y));
+    }
     REQUIRE(count > 20);
     const double relative = smcir / path - 1.0;
     MEASURED("default scene: ceiling (" << count << " px) mean indirect radiance, smcir " << smcir / count
