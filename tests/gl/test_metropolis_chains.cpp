@@ -144,7 +144,7 @@ TEST_CASE("Metropolis chains started on one texel reach the importance map's dis
     CHECK(wrong == 0);
 }
 
-TEST_CASE("Metropolis chains started from the importance sampler's draws stay in the distribution; zero "
+TEST_CASE("Metropolis chains started from the importance sampler's draws stay in the distribution, and zero "
           "iterations move nothing",
           "[gl][importance][tcas][numbers]")
 {
