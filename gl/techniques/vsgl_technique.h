@@ -32,7 +32,9 @@
 //                       2. importance of every RSM texel = its unoccluded VSGL contribution to the
 //                          view lights (vsgl_importance.comp; MATH.md 10.1), into an R32F map with
 //                          the layers side by side
-//                       3. ImportanceSampler: tables and N draws (MATH.md 9.7)
+//                       3. ImportanceSampler: tables and N draws (MATH.md 9.7); tcas: the tables
+//                          (for the total) and N Metropolis-Hastings chains stepped against the map
+//                          (MetropolisChains, scope "TCAS chains"), started once from N draws
 //  VPL/VSGL generation  vsgl_generate.comp: VSGLight per draw (mip level, radius, lobe) or VPL
 //  shadow maps          imperfect shadow maps of the N lights (gl/passes/imperfect_shadow_maps.h:
 //                       8192 points splatted into a 64^2 paraboloid map per light, pull-push), or none
