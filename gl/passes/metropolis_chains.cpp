@@ -29,7 +29,6 @@ void MetropolisChains::start(const gl::Texture& importance, const ImportanceSamp
 {
     resize(count);
     bindImage(shared::kImageImportance, importance, GL_READ_ONLY);
-    bindStorageBuffer(shared::kBindingImportanceColumns, tables.columns());
     bindStorageBuffer(shared::kBindingImportanceMarginal, tables.marginal());
     bindStorageBuffer(shared::kBindingImportanceSamples, tables.samples());
     bindStorageBuffer(shared::kBindingChainStates, mStates);
@@ -55,7 +54,6 @@ void MetropolisChains::step(const gl::Texture& importance, const ImportanceSampl
     const std::uint32_t zero = 0;
     glNamedBufferSubData(mCounters.id(), 0, sizeof zero, &zero);
     bindImage(shared::kImageImportance, importance, GL_READ_ONLY);
-    bindStorageBuffer(shared::kBindingImportanceColumns, tables.columns());
     bindStorageBuffer(shared::kBindingImportanceMarginal, tables.marginal());
     bindStorageBuffer(shared::kBindingImportanceSamples, mSamples);
     bindStorageBuffer(shared::kBindingChainStates, mStates);

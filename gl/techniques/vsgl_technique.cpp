@@ -61,7 +61,7 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, Kind kind)
     rsm.visitParams(v);
 }
 
-VSGLTechnique::VSGLTechnique(VSGLParams::Kind kind) : mKind(kind), mPointLights(kind != VSGLParams::VSGL) {}
+VSGLTechnique::VSGLTechnique(VSGLParams::Kind kind) : mKind(kind) {}
 
 VSGLTechnique::~VSGLTechnique() = default;
 
@@ -73,14 +73,14 @@ void VSGLTechnique::visitParams(ParamVisitor& v)
 void VSGLTechnique::createPasses(const gl::ShaderLoader& shaders)
 {
     // Only VSGL's footprints read the RSM's mips; vpl-brsm's VPLs read level 0.
-    mRSM = std::make_unique<RSMPass>(shaders, mPointLights ? RSMMips::None : RSMMips::All);
+    mRSM = std::make_unique<RSMPass>(shaders, pointLights() ? RSMMips::None : RSMMips::All);
     mSampler = std::make_unique<ImportanceSampler>(shaders, "BRSM sampler");
     if (mKind == VSGLParams::TCAS) {
         mChains = std::make_unique<MetropolisChains>(shaders, "TCAS chains");
         mChainsStarted = false;
     }
     mViewRSMPass = ComputePass(shaders, "G-buffer as light", "passes/vsgl_view_rsm.comp");
-    mGeneratePass = ComputePass(shaders, mPointLights ? "VPL generation" : "VSGL generation", "passes/vsgl_generate.comp");
+    mGeneratePass = ComputePass(shaders, pointLights() ? "VPL generation" : "VSGL generation", "passes/vsgl_generate.comp");
     mNoImportance = gl::Texture::placeholder("no importance", GL_TEXTURE_2D, GL_R32F);
     mImportancePass = ComputePass(shaders, "BRSM importance", "passes/vsgl_importance.comp");
     mShading = std::make_unique<FullscreenPass>(shaders, "radiance estimation", "passes/vsgl_shading.frag");
@@ -127,7 +127,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
     require(isPowerOfTwo(mParams.viewGrid), std::string(name()) + ".viewGrid must be a power of two, not " +
                                                 std::to_string(mParams.viewGrid));
     const std::string prefix(name());
-    const bool cells = !mPointLights && mParams.footprint == VSGLParams::Cell; // vsgl.footprint
+    const bool cells = !pointLights() && mParams.footprint == VSGLParams::Cell; // vsgl.footprint
     mValidLights = 0;
     // N lights in one storage block, and a per-pixel shading loop over all N (llvmpipe stops it
     // after 65535 iterations: N = 65536 would drop the last light).
@@ -206,7 +206,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         mImportancePass.program().set("uViewCount", mViewLightCount);
         mImportancePass.program().set("uPointFormula", mParams.pdf == VSGLParams::Point ? 1 : 0);
         mImportancePass.program().set("uEye", frame.camera.position);
-        mImportancePass.program().set("uClampGeometry", mPointLights ? mParams.clampGeometry : 0.0f);
+        mImportancePass.program().set("uClampGeometry", pointLights() ? mParams.clampGeometry : 0.0f);
         mImportancePass.dispatch(size * layers, size, NextRead::Image);
 
         // 3. The tables and N draws (MATH.md 9.7).
@@ -239,12 +239,12 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         gl::PassTimer::Scope scope(frame.timer, "VPL/VSGL generation");
         const auto bytes = static_cast<GLsizeiptr>(mCount) * static_cast<GLsizeiptr>(sizeof(shared::VSGLight));
         if (mLights.size() < bytes) mLights = gl::Buffer(prefix + " lights", bytes);
-        bindRSMLayout(mRSM->target(), !mPointLights);
+        bindRSMLayout(mRSM->target(), !pointLights());
         bindStorageBuffer(shared::kBindingImportanceSamples,
                           mKind == VSGLParams::TCAS ? mChains->samples() : mSampler->samples());
         bindStorageBuffer(shared::kBindingVSGLights, mLights);
         const gl::Program& generate = mGeneratePass.program();
-        generate.set("uMode", mPointLights ? 1 : 0);
+        generate.set("uMode", pointLights() ? 1 : 0);
         generate.set("uCount", mCount);
         generate.set("uSize", size);
         generate.set("uLevels", mRSM->levelCount());
@@ -278,9 +278,9 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         bindStorageBuffer(shared::kBindingRSMLayers, mRSM->layerLights());
         const gl::Program& shading = mShading->program();
         shading.set("uCount", mCount);
-        shading.set("uPointLights", mPointLights ? 1 : 0);
+        shading.set("uPointLights", pointLights() ? 1 : 0);
         shading.set("uBiasAlpha", mParams.biasAlpha);
-        shading.set("uClampGeometry", mPointLights ? mParams.clampGeometry : 0.0f);
+        shading.set("uClampGeometry", pointLights() ? mParams.clampGeometry : 0.0f);
         shading.set("uVisibility", visibility ? 1 : 0);
         if (visibility) mISM->bindForReading(shading);
         mShading->render(mShaded);
@@ -291,7 +291,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
 
 std::vector<std::pair<std::string, double>> VSGLTechnique::frameStats() const
 {
-    std::vector<std::pair<std::string, double>> stats{{mPointLights ? "vpls" : "vsgls", static_cast<double>(mCount)},
+    std::vector<std::pair<std::string, double>> stats{{pointLights() ? "vpls" : "vsgls", static_cast<double>(mCount)},
             {"view lights", static_cast<double>(mViewLightCount)},
             {"rsm layers", static_cast<double>(mRSM ? mRSM->layerCount() : 0)}};
     if (mKind == VSGLParams::TCAS && mChains && mChainsStarted)
@@ -318,7 +318,7 @@ std::vector<DebugView> VSGLTechnique::debugViews() const
                    {0.0f, mScene ? glm::length(mScene->worldBounds().extent()) : 1.0f}};
     maps.layerCount = 0;
     views.push_back(maps);
-    if (!mPointLights)
+    if (!pointLights())
         views.push_back({t + ".cancellation",
                          "fraction of the lights whose SG approximation section 3.3 cancelled (Fig. 6 bottom)",
                          mShaded ? &mShaded.color(1) : nullptr, shared::kDebugViewScalar, {0.0f, 1.0f}});

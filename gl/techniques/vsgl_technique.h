@@ -138,8 +138,9 @@ public:
 private:
     void createPasses(const gl::ShaderLoader& shaders);
 
+    bool pointLights() const { return mKind != VSGLParams::VSGL; } // vpl-brsm and tcas
+
     VSGLParams::Kind mKind;
-    bool mPointLights; // vpl-brsm and tcas
     VSGLParams mParams;
     const Scene* mScene = nullptr;
     const gl::ShaderLoader* mShaders = nullptr;

@@ -15,17 +15,13 @@
 // balance; a mixture of such kernels is too). tests/gl/test_metropolis_chains.cpp checks it with a
 // chi-square test from a start far from the target.
 #include "shared/bindings.h"
+#define VPLGI_IMPORTANCE_TYPES_ONLY // the draw record and the hashed uniforms; no table search
+#include "shared/importance.h"
 
 layout(local_size_x = 64) in;
 layout(binding = kImageImportance, r32f) uniform readonly image2D uImportance;
-layout(std430, binding = kBindingImportanceColumns) readonly buffer Columns { float columns[]; };
+// The importance tables' marginal sums: its last entry is the map's total.
 layout(std430, binding = kBindingImportanceMarginal) readonly buffer Marginal { float marginal[]; };
-
-float importanceMarginal(int u) { return marginal[u]; }
-float importanceColumn(int u, int v) { return columns[v * imageSize(uImportance).x + u]; }
-float importanceValue(int u, int v) { return imageLoad(uImportance, ivec2(u, v)).r; }
-
-#include "shared/importance.h"
 
 layout(std430, binding = kBindingImportanceSamples) buffer Samples { ImportanceSample samples[]; };
 layout(std430, binding = kBindingChainStates) buffer States { uint states[]; };
