@@ -74,6 +74,7 @@ struct CompareOptions {
     std::string writeDir;                     // where files go while running (StagedDirectory of outDir)
     std::string cache;
     std::string against;                      // --against: a --techniques entry ("" = none)
+    int seeds = 1;                            // --seeds: runs per technique with seeds of its own
 };
 
 std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args)
@@ -108,6 +109,11 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                  "also compare every technique's image with that of T, one of --techniques: the mean and 99.9th "
                  "percentile of |A - B| after the fixed-exposure tone map (LightSkin+BRSM Fig. 3 and 6), and the ratio of "
                  "|E'| to T's with a 95% bootstrap interval over the tracked pixels");
+    parser.value("seeds", "N",
+                 "render every technique that has seed parameters of its own N times, with <group>.seed = 1..N: "
+                 "|E| and |E'| become the mean over the seeds with a 95% Student-t interval (SMCIR Table 1 over "
+                 "seeds); images, plots and image metrics stay the first seed's",
+                 "1");
     parser.value("out", "DIR", "output directory (created)", "out/compare");
     parser.value("cache", "DIR", "reference cache directory ($VPLGI_CACHE_DIR or out/reference-cache)");
     if (!parser.parse(args)) return std::nullopt;
@@ -124,6 +130,7 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
             "--tracked-choice \"" + choice + "\" must be indirect or grid");
     o.trackedIndirect = choice == "indirect";
     o.trackedReferenceSpp = parser.getInt("reference-spp", 1, 1 << 24);
+    o.seeds = parser.getInt("seeds", 1, 1000);
     o.outDir = parser.get("out");
     o.referenceModeName = parser.get("reference-mode");
     o.reference.mode = parseReferenceMode(o.referenceModeName);
@@ -236,7 +243,7 @@ std::string comparedPartText(PathTracerParams::Mode mode)
 // Renders one frame of one technique and records its errors, tracked pixels and completed timings.
 // `reference` is empty without a full-image reference (--spp 0): no image errors then.
 void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const ImageRGBA32F& reference,
-                          const std::vector<glm::ivec2>& tracked, int frame, double exposure)
+                          const std::vector<glm::ivec2>& tracked, int frame, double exposure, bool keepImages)
 {
     Renderer& renderer = run.session->renderer();
     renderer.renderFrame(run.session->camera(), o.size.width, o.size.height, o.animation.timeOf(frame));
@@ -249,7 +256,7 @@ void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const Imag
     std::vector<double> values;
     for (glm::ivec2 p : tracked) values.push_back(luminanceAt(image, p));
     run.tracked.push_back(values);
-    if (compareKeepsImages(frame, o.animation.frames)) {
+    if (keepImages && compareKeepsImages(frame, o.animation.frames)) {
         writeImage(o.writeDir + "/" + compareImageName(run.name, frame, ".png"), renderer.readDisplay());
         writeImage(o.writeDir + "/" + compareImageName(run.name, frame, ".exr"), image);
         if (haveReference)
@@ -260,9 +267,12 @@ void renderTechniqueFrame(const CompareOptions& o, TechniqueRun& run, const Imag
 
 // The frame loop: animations advance, the reference is obtained again (cache first) whenever the
 // scene content or camera changed, then every technique renders and is measured against it.
+// Seeds 2..N of compare --seeds write no images and take no --against errors; their references come
+// from the cache the first seed's loop filled.
 FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>& runs,
-                             const std::vector<glm::ivec2>& tracked, double exposure)
+                             const std::vector<glm::ivec2>& tracked, double exposure, int seed = 1)
 {
+    const bool firstSeed = seed == 1;
     // The reference follows the first session's scene state (all sessions animate identically).
     Session& lead = *runs.front().session;
     FrameLoopResult result;
@@ -299,13 +309,13 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
         }
         result.referenceTracked.push_back(trackedFirst);
         result.referenceCheckTracked.push_back(trackedSecond);
-        if (o.reference.spp > 0 && compareKeepsImages(frame, o.animation.frames)) {
+        if (firstSeed && o.reference.spp > 0 && compareKeepsImages(frame, o.animation.frames)) {
             writeImage(o.writeDir + "/" + compareImageName("reference", frame, ".exr"), reference);
             writeImage(o.writeDir + "/" + compareImageName("reference", frame, ".png"),
                        toneMapImage(reference, exposure));
         }
-        for (TechniqueRun& run : runs) renderTechniqueFrame(o, run, reference, tracked, frame, exposure);
-        if (!o.against.empty()) {
+        for (TechniqueRun& run : runs) renderTechniqueFrame(o, run, reference, tracked, frame, exposure, firstSeed);
+        if (firstSeed && !o.against.empty()) {
             const TechniqueRun& base = *std::find_if(runs.begin(), runs.end(),
                                                      [&](const TechniqueRun& r) { return r.name == o.against; });
             for (TechniqueRun& run : runs) {
@@ -315,7 +325,10 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
                                errorHeatMap(run.image, base.image, exposure, 0.05));
             }
         }
-        std::fprintf(stderr, "frame %d/%d done\n", frame + 1, o.animation.frames);
+        if (o.seeds > 1)
+            std::fprintf(stderr, "frame %d/%d done (seed %d/%d)\n", frame + 1, o.animation.frames, seed, o.seeds);
+        else
+            std::fprintf(stderr, "frame %d/%d done\n", frame + 1, o.animation.frames);
     }
     for (TechniqueRun& run : runs) {
         gl::PassTimer& timer = run.session->renderer().timer();
@@ -345,6 +358,10 @@ CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std:
         result.againstErrors.p999AbsToneMapped += e.p999AbsToneMapped / againstFrames;
     }
     result.temporal = temporalErrors(run.tracked, referenceTracked, exposure);
+    result.seedAbsE = {result.temporal.meanAbsError};
+    result.seedAbsEPrime = {result.temporal.meanAbsDerivative};
+    result.absE = meanInterval(result.seedAbsE);
+    result.absEPrime = meanInterval(result.seedAbsEPrime);
     std::vector<double> ms = run.frameMilliseconds;
     std::sort(ms.begin(), ms.end());
     result.medianFrameMs = ms.empty() ? 0.0 : ms[ms.size() / 2];
@@ -384,15 +401,98 @@ CompareReport makeReport(const CompareOptions& o, const Scene& scene, const std:
     report.trackedReferenceSeconds = loop.trackedReferenceSeconds;
     report.referenceSelf = temporalErrors(loop.referenceCheckTracked, loop.referenceTracked, exposure);
     report.against = o.against;
+    report.seeds = o.seeds;
     for (const TechniqueRun& run : runs)
         report.techniques.push_back(summarize(run, loop.referenceTracked, exposure, run.settings));
-    if (!o.against.empty()) {
-        const auto base = std::find_if(report.techniques.begin(), report.techniques.end(),
-                                       [&](const CompareTechniqueResult& t) { return t.name == o.against; });
-        for (CompareTechniqueResult& t : report.techniques)
-            t.againstEPrime = temporalDerivativeRatio(t.temporal, base->temporal);
-    }
     return report;
+}
+
+// --against: every technique's |E'| over the base's, with its interval over the tracked pixels
+// (after addSeeds: of the per-pixel means over the seeds).
+void addAgainstRatios(CompareReport& report)
+{
+    if (report.against.empty()) return;
+    const auto base = std::find_if(report.techniques.begin(), report.techniques.end(),
+                                   [&](const CompareTechniqueResult& t) { return t.name == report.against; });
+    for (CompareTechniqueResult& t : report.techniques)
+        t.againstEPrime = temporalDerivativeRatio(t.temporal, base->temporal);
+}
+
+// --seeds N: the first seed is the run already in `report` (every technique's <group>.seed defaults
+// to 1; parseSeedKeys refused a --set of them). Here each technique with seed keys renders the same
+// frames again with <group>.seed = 2..N, one seed at a time (the sessions of one seed live only for
+// its loop), against the same tracked-pixel reference. Its temporal metrics become the mean over the
+// seeds (per tracked pixel too, for --against), with the 95% Student-t interval of |E| and |E'|.
+void addSeeds(const CompareOptions& o, const std::vector<TechniqueRun>& first, const std::vector<std::string>& names,
+              const std::vector<std::vector<std::string>>& seedKeys, const std::vector<glm::ivec2>& tracked,
+              const FrameLoopResult& loop, double exposure, CompareReport& report)
+{
+    std::vector<std::vector<TemporalErrors>> perSeed(first.size());
+    for (std::size_t i = 0; i < first.size(); ++i) perSeed[i].push_back(report.techniques[i].temporal);
+    for (int seed = 2; seed <= o.seeds; ++seed) {
+        std::vector<std::size_t> which;
+        std::vector<std::string> seedNames;
+        std::vector<Settings> seedSettings;
+        for (std::size_t i = 0; i < first.size(); ++i) {
+            if (seedKeys[i].empty()) continue;
+            which.push_back(i);
+            seedNames.push_back(names[i]);
+            Settings settings = first[i].settings;
+            for (const std::string& key : seedKeys[i]) settings.emplace_back(key, std::to_string(seed));
+            seedSettings.push_back(settings);
+        }
+        if (which.empty()) break;
+        std::vector<std::unique_ptr<Session>> sessions =
+            createSessions(o.scene.sceneSpec, o.scene.camera, seedNames, seedSettings, o.referenceKeys);
+        std::vector<TechniqueRun> runs;
+        for (std::size_t k = 0; k < which.size(); ++k) {
+            TechniqueRun run;
+            run.name = first[which[k]].name;
+            run.settings = seedSettings[k];
+            run.session = std::move(sessions[k]);
+            run.session->createRenderer();
+            runs.push_back(std::move(run));
+        }
+        renderFrames(o, runs, tracked, exposure, seed);
+        for (std::size_t k = 0; k < which.size(); ++k)
+            perSeed[which[k]].push_back(temporalErrors(runs[k].tracked, loop.referenceTracked, exposure));
+    }
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        CompareTechniqueResult& t = report.techniques[i];
+        const std::vector<TemporalErrors>& seeds = perSeed[i];
+        t.seeds = static_cast<int>(seeds.size());
+        t.seedAbsE.clear();
+        t.seedAbsEPrime.clear();
+        for (const TemporalErrors& e : seeds) {
+            t.seedAbsE.push_back(e.meanAbsError);
+            t.seedAbsEPrime.push_back(e.meanAbsDerivative);
+        }
+        t.absE = meanInterval(t.seedAbsE);
+        t.absEPrime = meanInterval(t.seedAbsEPrime);
+        t.temporal.meanAbsError = t.absE.mean;
+        t.temporal.meanAbsDerivative = t.absEPrime.mean;
+        for (std::size_t p = 0; p < t.temporal.pixelAbsDerivative.size(); ++p) {
+            double sum = 0.0;
+            for (const TemporalErrors& e : seeds) sum += e.pixelAbsDerivative[p];
+            t.temporal.pixelAbsDerivative[p] = sum / static_cast<double>(seeds.size());
+        }
+    }
+}
+
+// The seed keys of each run's technique; with --seeds > 1, a --set of one of them is an error (the
+// seeds are 1..N).
+std::vector<std::vector<std::string>> parseSeedKeys(const CompareOptions& o, const std::vector<TechniqueRun>& runs)
+{
+    std::vector<std::vector<std::string>> keys;
+    for (const TechniqueRun& run : runs) {
+        keys.push_back(run.session->techniqueSeedKeys());
+        if (o.seeds == 1) continue;
+        for (const auto& [key, value] : run.settings)
+            require(std::find(keys.back().begin(), keys.back().end(), key) == keys.back().end(),
+                    "--seeds " + std::to_string(o.seeds) + " sets " + key + " to 1.." + std::to_string(o.seeds) +
+                        ": do not also set it (" + run.name + ")");
+    }
+    return keys;
 }
 
 } // namespace
@@ -426,6 +526,7 @@ int runCompare(const std::vector<std::string>& args)
         run.session = std::move(sessions[i]);
         runs.push_back(std::move(run));
     }
+    const std::vector<std::vector<std::string>> seedKeys = parseSeedKeys(o, runs);
 
     // Everything is written under a temporary name and moved into place at the end: a failure
     // part-way leaves no half report.
@@ -442,7 +543,9 @@ int runCompare(const std::vector<std::string>& args)
     const TrackedChoice tracked = chooseTrackedPixels(o, lead);
     const FrameLoopResult loop = renderFrames(o, runs, tracked.pixels, exposure);
 
-    const CompareReport report = makeReport(o, lead.scene(), runs, loop, tracked, exposure);
+    CompareReport report = makeReport(o, lead.scene(), runs, loop, tracked, exposure);
+    if (o.seeds > 1) addSeeds(o, runs, names, seedKeys, tracked.pixels, loop, exposure, report);
+    addAgainstRatios(report);
     writeCompareReport(o.writeDir, report);
     staged.commit();
     std::printf("%s", compareTemporalSummary(report).c_str());

@@ -241,21 +241,6 @@ double meanLuminance(const ImageRGBA32F& image)
     return n ? sum / static_cast<double>(n) : 0.0;
 }
 
-// The technique's own seed keys ("<group>.seed"; not the renderer's lights.seed, not reference.seed).
-std::vector<std::string> seedKeys(Session& session)
-{
-    std::vector<std::string> keys;
-    std::stringstream lines(session.parameterList());
-    for (std::string line; std::getline(lines, line);) {
-        const std::string key = line.substr(0, line.find(' '));
-        const std::size_t dot = key.rfind('.');
-        if (dot == std::string::npos || key.substr(dot + 1) != "seed") continue;
-        if (key == "lights.seed" || key.rfind("reference.", 0) == 0) continue;
-        keys.push_back(key);
-    }
-    return keys;
-}
-
 // `technique` is a --techniques entry: name or name[key=value;...] (settings after --set's).
 SessionOptions sessionFor(const ConformOptions& o, const std::string& sceneSpec,
                           const std::shared_ptr<const SceneDescription>& scene, const std::string& technique,
@@ -306,7 +291,7 @@ Cell runCell(const ConformOptions& o, const std::string& sceneSpec,
     cell.technique = technique;
     Session probe(sessionFor(o, sceneSpec, scene, technique, {}));
     require(hasLight(probe.scene()), sceneSpec + ": the scene has no light (no light source, no emissive material)");
-    const std::vector<std::string> keys = seedKeys(probe);
+    const std::vector<std::string> keys = probe.techniqueSeedKeys();
     cell.seeds = keys.empty() ? 1 : o.seeds;
     // The sealed rooms: the first camera ("default") in the lit room, "closed" in the closed one.
     const bool sealed = probe.scene().findCamera("closed") != nullptr;

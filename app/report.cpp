@@ -257,6 +257,14 @@ std::string noiseCheckText(const CompareReport& report)
     return text.str();
 }
 
+// "0.0156 [0.0150, 0.0162] (4 seeds)" with compare --seeds, else "0.0156": a temporal metric.
+std::string seedsText(const MeanInterval& m, int seeds)
+{
+    if (seeds <= 1) return formatNumber(m.mean);
+    return formatNumber(m.mean) + " [" + formatNumber(m.mean - m.halfWidth) + ", " + formatNumber(m.mean + m.halfWidth) +
+           "] (" + std::to_string(seeds) + " seeds)";
+}
+
 // "0.42 [0.35, 0.49]": a ratio with its interval.
 std::string ratioIntervalText(const RatioInterval& r)
 {
@@ -284,7 +292,7 @@ std::string compareTemporalSummary(const CompareReport& report)
          << " s for both seeds):\n";
     for (const CompareTechniqueResult& t : report.techniques)
         text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": |E| "
-             << formatNumber(t.temporal.meanAbsError) << "  |E'| " << formatNumber(t.temporal.meanAbsDerivative) << "\n";
+             << seedsText(t.absE, t.seeds) << "  |E'| " << seedsText(t.absEPrime, t.seeds) << "\n";
     text << "  " << noiseCheckText(report) << "\n";
     if (!report.against.empty()) {
         text << "difference from " << report.against << " (mean |A - B| after the tone map, 99.9th percentile;"
@@ -303,14 +311,15 @@ std::string compareCsv(const CompareReport& report)
 {
     std::ostringstream csv;
     csv << "technique,frames,mean_abs_tonemapped,p999_abs_tonemapped,rmse,relative_mse,mean_luminance_bias,temporal_abs_e,"
-           "temporal_abs_e_prime,median_frame_ms,against,against_mean_abs_tonemapped,against_p999_abs_tonemapped,"
+           "temporal_abs_e_prime,median_frame_ms,seeds,temporal_abs_e_half95,temporal_abs_e_prime_half95,against,against_mean_abs_tonemapped,against_p999_abs_tonemapped,"
            "against_abs_e_prime_ratio,against_abs_e_prime_ratio_low,against_abs_e_prime_ratio_high,settings\n";
     for (const CompareTechniqueResult& t : report.techniques) {
         const ImageErrors& mean = t.meanErrors;
         csv << t.name << "," << report.frames << "," << imageMetric(report, mean.meanAbsToneMapped, "") << ","
             << imageMetric(report, mean.p999AbsToneMapped, "") << "," << imageMetric(report, mean.rmse, "") << "," << imageMetric(report, mean.relativeMSE, "") << ","
             << imageMetric(report, mean.meanRelativeLuminance, "") << "," << t.temporal.meanAbsError << ","
-            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << report.against << ",";
+            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << t.seeds << "," << t.absE.halfWidth << ","
+            << t.absEPrime.halfWidth << "," << report.against << ",";
         if (!report.against.empty())
             csv << t.againstErrors.meanAbsToneMapped << "," << t.againstErrors.p999AbsToneMapped << ","
                 << t.againstEPrime.ratio << "," << t.againstEPrime.low << "," << t.againstEPrime.high;
@@ -342,6 +351,13 @@ std::string compareJson(const CompareReport& report)
                       {"temporalAbsE", t.temporal.meanAbsError},
                       {"temporalAbsEPrime", t.temporal.meanAbsDerivative},
                       {"medianFrameMs", t.medianFrameMs},
+                      // compare --seeds: temporalAbsE(Prime) are the means over the seeds, with the
+                      // half-widths of their 95% Student-t intervals and the per-seed values.
+                      {"seeds", t.seeds},
+                      {"temporalAbsEHalf95", t.absE.halfWidth},
+                      {"temporalAbsEPrimeHalf95", t.absEPrime.halfWidth},
+                      {"temporalAbsEPerSeed", t.seedAbsE},
+                      {"temporalAbsEPrimePerSeed", t.seedAbsEPrime},
                       {"trackedLuminance", t.tracked}}; // [frame][tracked pixel] linear luminance
         if (!report.against.empty())
             entry["against"] = {{"technique", report.against},
@@ -412,8 +428,8 @@ std::string metricsTableRows(const CompareReport& report)
               << cell(mean.meanAbsToneMapped) << "</td><td>" << cell(mean.p999AbsToneMapped) << "</td><td>"
               << cell(mean.rmse) << "</td><td>"
               << cell(mean.relativeMSE) << "</td><td>" << cell(100.0 * mean.meanRelativeLuminance, 3, "%")
-              << "</td><td>" << formatNumber(t.temporal.meanAbsError) << "</td><td>"
-              << formatNumber(t.temporal.meanAbsDerivative) << "</td><td>" << formatNumber(t.medianFrameMs, 4);
+              << "</td><td>" << seedsText(t.absE, t.seeds) << "</td><td>" << seedsText(t.absEPrime, t.seeds)
+              << "</td><td>" << formatNumber(t.medianFrameMs, 4);
         if (!report.against.empty())
             table << "</td><td>" << formatNumber(t.againstErrors.meanAbsToneMapped) << "</td><td>"
                   << formatNumber(t.againstErrors.p999AbsToneMapped) << "</td><td>"
@@ -472,7 +488,13 @@ std::string compareHtml(const CompareReport& report)
     html << "<p>Tracked pixels (" << report.trackedPixels.size() << "): " << htmlEscape(report.trackedChoice) << ":";
     for (const glm::ivec2& p : report.trackedPixels) html << " (" << p.x << ", " << p.y << ")";
     html << ". Their temporal metrics (SMCIR Table 1: average |E| and |E'| after Reinhard tone mapping, eq. 10) "
-         << "are measured against the tracked-pixel reference; the image metrics against the full-image one.</p>\n";
+         << "are measured against the tracked-pixel reference; the image metrics against the full-image one."
+         << (report.seeds > 1 ? " Over " + std::to_string(report.seeds) +
+                                    " seeds (--seeds; each technique's own seeds 1.." + std::to_string(report.seeds) +
+                                    "): |E| and |E'| are means with 95% Student-t intervals; images, plots and image "
+                                    "metrics are seed 1's."
+                              : std::string())
+         << "</p>\n";
     html << "<p>Reference noise: " << htmlEscape(noiseCheckText(report)) << ".</p>\n";
     html << "<h2>Metrics</h2>\n<table><tr><th>technique</th><th>settings (--set)</th><th>mean |E| (tone-mapped)</th>"
          << "<th>99.9th pct |E|</th><th>RMSE</th><th>rel. MSE</th>"

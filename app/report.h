@@ -62,6 +62,11 @@ struct CompareTechniqueResult {
     std::string settings;                     // the --set overrides its session used, "key=value ..."
     ImageErrors againstErrors;                // against CompareReport::against's image, averaged over frames
     RatioInterval againstEPrime;              // |E'| / the against technique's |E'|, with its 95% interval
+    // compare --seeds: `temporal` is then the mean over the seeds (per tracked pixel too); `tracked`,
+    // the images and the image metrics stay the first seed's.
+    int seeds = 1;                            // runs behind the temporal metrics (1: no seed of its own)
+    MeanInterval absE, absEPrime;             // |E| and |E'| over the seeds, 95% Student-t half-widths
+    std::vector<double> seedAbsE, seedAbsEPrime; // per seed, seed 1 first
 };
 
 // Everything the compare report shows besides the images (written while rendering, named by
@@ -85,6 +90,7 @@ struct CompareReport {
     TemporalErrors referenceSelf;           // the second seed's run against the first: its own |E|, |E'|
     std::vector<CompareTechniqueResult> techniques;
     std::string against; // --against: the technique every image is also compared with ("" = none)
+    int seeds = 1;       // --seeds
 };
 
 // Whether the tracked-pixel reference is quiet enough: its own |E'| <= 0.2x the smallest |E'| of

@@ -142,6 +142,20 @@ std::string Session::configuration()
            "\n" + dumper.text();
 }
 
+std::vector<std::string> Session::techniqueSeedKeys()
+{
+    std::vector<std::string> keys;
+    std::stringstream lines(parameterList());
+    for (std::string line; std::getline(lines, line);) {
+        const std::string key = line.substr(0, line.find(' '));
+        const std::size_t dot = key.rfind('.');
+        if (dot == std::string::npos || key.substr(dot + 1) != "seed") continue;
+        if (key == "lights.seed" || key.rfind("reference.", 0) == 0) continue;
+        keys.push_back(key);
+    }
+    return keys;
+}
+
 std::string Session::parameterList()
 {
     ParamDumper dumper;

@@ -114,6 +114,10 @@ public:
     // Only the parameter lines of configuration(): every key with its value, range or choices and doc
     // (`vplgi render --list-params`).
     std::string parameterList();
+    // The technique's own seed keys ("<group>.seed"; not the renderer's lights.seed, not
+    // reference.seed): what `conform` and `compare --seeds` set to 1..N. Empty for a technique without
+    // randomness of its own.
+    std::vector<std::string> techniqueSeedKeys();
 
 private:
     void visitAll(ParamVisitor& visitor);

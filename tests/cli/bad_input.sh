@@ -175,6 +175,7 @@ error "unknown option --reference" compare --scene cornell "${S[@]}" --reference
 error "unknown technique \"nope\"" compare --scene cornell "${S[@]}" --techniques direct,nope --out c
 error "parameter smcir.vplCount = 0 is outside" compare --scene cornell "${S[@]}" --techniques 'smcir[smcir.vplCount=0]' --out c
 error "--against \"vsgl\" must be one of --techniques" compare --scene cornell "${S[@]}" --against vsgl --out c
+error "--seeds 0 is outside [1, 1000]" compare --scene cornell "${S[@]}" --seeds 0 --out c
 error "--width 4 is outside [8, 8192]" compare --scene cornell --width 4 --height 16 --out c
 error "$I/afile/c: $I/afile is not a directory" compare --scene cornell "${S[@]}" --out $I/afile/c
 error "/proc/c: cannot write in /proc" compare --scene cornell "${S[@]}" --out /proc/c

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # vplgi compare's temporal experiment (SMCIR Table 1) end to end at tiny sizes: tracked pixels in
 # indirectly lit regions, the tracked-pixel reference (two seeds, its own |E'| and the 0.2x check,
-# cached), per-row technique settings, --spp 0 (no full-image reference) and --tracked-choice grid.
+# cached), per-row technique settings, --seeds (means with intervals), --spp 0 (no full-image reference)
+# and --tracked-choice grid.
 set -eu
 vplgi="$1"
 here="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -9,8 +10,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cache="$work/cache"
 
-args=(--scene "$here/scenes/cornell-moving-light.json" --techniques smcir-rt --reference-mode clamped --frames 3
-      --width 32 --height 18 --reference-spp 256 --set smcir.vplCount=64 --cache "$cache")
+common=(--scene "$here/scenes/cornell-moving-light.json" --reference-mode clamped --frames 3
+        --width 32 --height 18 --reference-spp 256 --set smcir.vplCount=64 --cache "$cache")
+args=(--techniques smcir-rt "${common[@]}")
 "$vplgi" compare "${args[@]}" --spp 0 --out "$work/a" > "$work/a.log" 2> "$work/a.err"
 grep -q "reference's own |E'|" "$work/a.log"
 grep -q "Reference noise" "$work/a/index.html"
@@ -51,6 +53,32 @@ for k in ("temporalAbsE", "temporalAbsEPrime"):
     assert a["techniques"][0][k] == b["techniques"][0][k], k
 PY
 echo "temporal: tracked-pixel references cached, results repeat"
+
+# --seeds 3: smcir-rt (seed key smcir.seed) three times, direct (no seed of its own) once. Seed 1 is
+# run a (the seeds default to 1); the interval is recomputed here from the per-seed values.
+"$vplgi" compare "${common[@]}" --techniques smcir-rt,direct --spp 0 --seeds 3 --out "$work/s" > "$work/s.log" 2> "$work/s.err"
+python3 - "$work/a/metrics.json" "$work/s/metrics.json" "$work/s/metrics.csv" "$work/s.log" <<'PY'
+import csv, json, math, statistics, sys
+a, s = (json.load(open(p)) for p in sys.argv[1:3])
+t, d = s["techniques"]
+assert t["name"] == "smcir-rt" and t["seeds"] == 3 and d["name"] == "direct" and d["seeds"] == 1, (t, d)
+for k in ("temporalAbsE", "temporalAbsEPrime"):
+    per = t[k + "PerSeed"]
+    assert len(per) == 3 and per[0] == a["techniques"][0][k], (k, per, a["techniques"][0][k])
+    assert len(set(per)) == 3, (k, per)  # the seed reaches the sampler: three different VPL sets
+    assert abs(t[k] - sum(per) / 3) <= 1e-12 * t[k], (k, t[k], per)
+    half = 4.303 * statistics.stdev(per) / math.sqrt(3)  # t(0.975, 2 dof) = 4.3027, 3 decimals as meanInterval
+    assert abs(t[k + "Half95"] - half) <= 1e-9 + 1e-6 * half, (k, t, half)
+    assert d[k + "Half95"] == 0 and len(d[k + "PerSeed"]) == 1, d
+rows = list(csv.DictReader(open(sys.argv[3])))
+assert rows[0]["seeds"] == "3" and abs(float(rows[0]["temporal_abs_e_prime_half95"]) - t["temporalAbsEPrimeHalf95"]) <= 1e-5 * t["temporalAbsEPrimeHalf95"], rows[0]
+assert "(3 seeds)" in open(sys.argv[4]).read()
+PY
+test -s "$work/s/images/smcir-rt-f0002.png"
+if "$vplgi" compare "${args[@]}" --spp 0 --seeds 2 --set smcir.seed=5 --out "$work/x" 2> "$work/e.log"; then exit 1; fi
+grep -q -- '--seeds 2 sets smcir.seed to 1..2: do not also set it (smcir-rt)' "$work/e.log"
+test ! -e "$work/x"
+echo "temporal: --seeds, mean and Student-t interval over the seeds"
 
 # The grid choice and a full-image reference (image metrics back).
 "$vplgi" compare "${args[@]}" --tracked-choice grid --tracked 4 --spp 2 --out "$work/g" > "$work/g.log" 2> "$work/g.err"
