@@ -473,14 +473,15 @@ TEST_CASE("the default scene (scenes/cornell.json, smcir) lights the ceiling wit
     MEASURED("default scene: ceiling (" << count << " px) mean indirect radiance, smcir " << smcir / count
              << " vs path tracer " << path / count << ": " << relative);
     CHECK(smcir > 0.0);
-    // Measured +6.0% with the default selection (smcir.rankRadiance = candidate, knnCountsSelf; +23%
+    // Measured +11.4% with the default selection (smcir.rankRadiance = candidate, knnCountsSelf; +23%
     // with the paper's ranking by the rendered radiance and eq. (7) self excluded): SMCIR's own bias at
     // I = 2048 after 100 warm-up frames (docs/smcir.md, "Selection bias"), not the GPU half (same
-    // VPLs: -0.3%, first test). The run is deterministic, so the band only has to hold code changes
-    // that keep the light transport: a lost tenth of the light (-4.6%) or a tenth more (+16.6%)
-    // leaves it.
-    CHECK(relative > -0.03);
-    CHECK(relative < 0.15);
+    // VPLs: -0.3%, first test). It was +6.0% when the selection landed (9294568); which later commit
+    // moved it is not bisected yet (issue 23). The run is deterministic, so the band only has to hold
+    // code changes that keep the light transport: a lost tenth of the light (+0.3%) or a tenth more
+    // (+22.5%) leaves it.
+    CHECK(relative > 0.04);
+    CHECK(relative < 0.19);
 }
 
 namespace {
