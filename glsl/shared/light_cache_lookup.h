@@ -214,6 +214,13 @@ VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float
                     if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= gridDims.x || cell.y >= gridDims.y ||
                         cell.z >= gridDims.z)
                         continue;
+                    // Speed only: a cell whose box lies wholly outside the search ball holds no candidate
+                    // (the box grown by a thousandth of a cell, so a cache that rounding put in the cell
+                    // from just outside it is still searched). A corner cell is skipped for about half
+                    // the points, an edge cell for a fifth.
+                    vec3 cellMin = gridOrigin + vec3(cell) * cellSize;
+                    vec3 gap = max(max(cellMin - x, x - cellMin - vec3(cellSize)) - vec3(1e-3f * cellSize), vec3(0.0f));
+                    if (!(dot(gap, gap) < radius2)) continue;
                     int cellIndex = (cell.z * gridDims.y + cell.y) * gridDims.x + cell.x;
                     int begin = int(lightCacheCellStart(VPLGI_CACHES cellIndex));
                     int end = int(lightCacheCellStart(VPLGI_CACHES cellIndex + 1));
