@@ -111,8 +111,8 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                  "|E'| to T's with a 95% bootstrap interval over the tracked pixels");
     parser.value("seeds", "N",
                  "render every technique that has seed parameters of its own N times, with <group>.seed = 1..N: "
-                 "|E| and |E'| become the mean over the seeds with a 95% Student-t interval (SMCIR Table 1 over "
-                 "seeds); images, plots and image metrics stay the first seed's",
+                 "|E| and |E'| and the image metrics become means over the seeds with 95% Student-t intervals "
+                 "(SMCIR Table 1 over seeds); images and plots stay the first seed's",
                  "1");
     parser.value("out", "DIR", "output directory (created)", "out/compare");
     parser.value("cache", "DIR", "reference cache directory ($VPLGI_CACHE_DIR or out/reference-cache)");
@@ -338,20 +338,29 @@ FrameLoopResult renderFrames(const CompareOptions& o, std::vector<TechniqueRun>&
     return result;
 }
 
+// Image errors averaged, over a run's frames or over the seeds (zero for none: no full-image reference).
+ImageErrors averageErrors(const std::vector<ImageErrors>& errors)
+{
+    ImageErrors mean;
+    const double count = static_cast<double>(std::max<std::size_t>(1, errors.size()));
+    for (const ImageErrors& e : errors) {
+        mean.meanAbsToneMapped += e.meanAbsToneMapped / count;
+        mean.p999AbsToneMapped += e.p999AbsToneMapped / count;
+        mean.rmse += e.rmse / count;
+        mean.relativeMSE += e.relativeMSE / count;
+        mean.meanRelativeLuminance += e.meanRelativeLuminance / count;
+    }
+    return mean;
+}
+
 // Per technique: errors averaged over frames, temporal errors over the tracked pixels, median frame time.
 CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std::vector<double>>& referenceTracked,
                                  double exposure, const Settings& settings)
 {
     CompareTechniqueResult result;
     result.name = run.name;
-    const double frames = static_cast<double>(std::max<std::size_t>(1, run.frameErrors.size()));
-    for (const ImageErrors& e : run.frameErrors) {
-        result.meanErrors.meanAbsToneMapped += e.meanAbsToneMapped / frames;
-        result.meanErrors.p999AbsToneMapped += e.p999AbsToneMapped / frames;
-        result.meanErrors.rmse += e.rmse / frames;
-        result.meanErrors.relativeMSE += e.relativeMSE / frames;
-        result.meanErrors.meanRelativeLuminance += e.meanRelativeLuminance / frames;
-    }
+    result.meanErrors = averageErrors(run.frameErrors);
+    result.seedImageErrors = {result.meanErrors};
     const double againstFrames = static_cast<double>(std::max<std::size_t>(1, run.againstErrors.size()));
     for (const ImageErrors& e : run.againstErrors) {
         result.againstErrors.meanAbsToneMapped += e.meanAbsToneMapped / againstFrames;
@@ -429,6 +438,8 @@ void addSeeds(const CompareOptions& o, const std::vector<TechniqueRun>& first, c
 {
     std::vector<std::vector<TemporalErrors>> perSeed(first.size());
     for (std::size_t i = 0; i < first.size(); ++i) perSeed[i].push_back(report.techniques[i].temporal);
+    std::vector<std::vector<ImageErrors>> imagePerSeed(first.size());
+    for (std::size_t i = 0; i < first.size(); ++i) imagePerSeed[i].push_back(report.techniques[i].meanErrors);
     for (int seed = 2; seed <= o.seeds; ++seed) {
         std::vector<std::size_t> which;
         std::vector<std::string> seedNames;
@@ -454,8 +465,10 @@ void addSeeds(const CompareOptions& o, const std::vector<TechniqueRun>& first, c
             runs.push_back(std::move(run));
         }
         renderFrames(o, runs, tracked, exposure, seed);
-        for (std::size_t k = 0; k < which.size(); ++k)
+        for (std::size_t k = 0; k < which.size(); ++k) {
             perSeed[which[k]].push_back(temporalErrors(runs[k].tracked, loop.referenceTracked, exposure));
+            imagePerSeed[which[k]].push_back(averageErrors(runs[k].frameErrors));
+        }
     }
     for (std::size_t i = 0; i < first.size(); ++i) {
         CompareTechniqueResult& t = report.techniques[i];
@@ -471,6 +484,9 @@ void addSeeds(const CompareOptions& o, const std::vector<TechniqueRun>& first, c
         t.absEPrime = meanInterval(t.seedAbsEPrime);
         t.temporal.meanAbsError = t.absE.mean;
         t.temporal.meanAbsDerivative = t.absEPrime.mean;
+        // The image metrics (with a full-image reference): each the mean over the seeds.
+        t.seedImageErrors = imagePerSeed[i];
+        t.meanErrors = averageErrors(t.seedImageErrors);
         for (std::size_t p = 0; p < t.temporal.pixelAbsDerivative.size(); ++p) {
             double sum = 0.0;
             for (const TemporalErrors& e : seeds) sum += e.pixelAbsDerivative[p];

@@ -335,6 +335,16 @@ std::string compareJson(const CompareReport& report)
     using Json = nlohmann::ordered_json;
     // A whole-image metric, null when the run had no image metrics (no reference image).
     auto metric = [&](double value) { return report.imageMetrics ? Json(value) : Json(nullptr); };
+    auto imagePerSeed = [&](const CompareTechniqueResult& t) {
+        if (!report.imageMetrics) return Json(nullptr);
+        Json seeds = {{"meanAbsToneMapped", Json::array()}, {"rmse", Json::array()}, {"meanLuminanceBias", Json::array()}};
+        for (const ImageErrors& e : t.seedImageErrors) {
+            seeds["meanAbsToneMapped"].push_back(e.meanAbsToneMapped);
+            seeds["rmse"].push_back(e.rmse);
+            seeds["meanLuminanceBias"].push_back(e.meanRelativeLuminance);
+        }
+        return seeds;
+    };
     const ReferenceNoiseCheck check = referenceNoiseCheck(report);
     Json pixels = Json::array();
     for (const glm::ivec2& p : report.trackedPixels) pixels.push_back({p.x, p.y});
@@ -358,6 +368,9 @@ std::string compareJson(const CompareReport& report)
                       {"temporalAbsEPrimeHalf95", t.absEPrime.halfWidth},
                       {"temporalAbsEPerSeed", t.seedAbsE},
                       {"temporalAbsEPrimePerSeed", t.seedAbsEPrime},
+                      // The image metrics above are means over the seeds; per seed here (null
+                      // without a full-image reference).
+                      {"imageMetricsPerSeed", imagePerSeed(t)},
                       {"trackedLuminance", t.tracked}}; // [frame][tracked pixel] linear luminance
         if (!report.against.empty())
             entry["against"] = {{"technique", report.against},
@@ -424,10 +437,20 @@ std::string metricsTableRows(const CompareReport& report)
         auto cell = [&](double value, int digits = 4, const char* unit = "") {
             return report.imageMetrics ? formatNumber(value, digits) + unit : std::string("-");
         };
+        // Over seeds (compare --seeds): the mean with its 95% interval.
+        auto seedsCell = [&](double ImageErrors::*field, double scale = 1.0, const char* unit = "") {
+            if (!report.imageMetrics) return std::string("-");
+            std::vector<double> values;
+            for (const ImageErrors& e : t.seedImageErrors) values.push_back(scale * (e.*field));
+            if (t.seeds <= 1) return formatNumber(scale * (mean.*field)) + unit;
+            const MeanInterval m = meanInterval(values);
+            return formatNumber(m.mean) + unit + " [" + formatNumber(m.mean - m.halfWidth) + ", " +
+                   formatNumber(m.mean + m.halfWidth) + "]";
+        };
         table << "<tr><td>" << htmlEscape(t.name) << "</td><td>" << htmlEscape(t.settings) << "</td><td>"
-              << cell(mean.meanAbsToneMapped) << "</td><td>" << cell(mean.p999AbsToneMapped) << "</td><td>"
-              << cell(mean.rmse) << "</td><td>"
-              << cell(mean.relativeMSE) << "</td><td>" << cell(100.0 * mean.meanRelativeLuminance, 3, "%")
+              << seedsCell(&ImageErrors::meanAbsToneMapped) << "</td><td>" << cell(mean.p999AbsToneMapped) << "</td><td>"
+              << seedsCell(&ImageErrors::rmse) << "</td><td>"
+              << cell(mean.relativeMSE) << "</td><td>" << seedsCell(&ImageErrors::meanRelativeLuminance, 100.0, "%")
               << "</td><td>" << seedsText(t.absE, t.seeds) << "</td><td>" << seedsText(t.absEPrime, t.seeds)
               << "</td><td>" << formatNumber(t.medianFrameMs, 4);
         if (!report.against.empty())
@@ -491,8 +514,9 @@ std::string compareHtml(const CompareReport& report)
          << "are measured against the tracked-pixel reference; the image metrics against the full-image one."
          << (report.seeds > 1 ? " Over " + std::to_string(report.seeds) +
                                     " seeds (--seeds; each technique's own seeds 1.." + std::to_string(report.seeds) +
-                                    "): |E| and |E'| are means with 95% Student-t intervals; images, plots and image "
-                                    "metrics are seed 1's."
+                                    "): |E| and |E'| at the tracked pixels and the image metrics' mean |E|, RMSE and "
+                                    "luminance bias are means with 95% Student-t intervals (the other image metrics "
+                                    "means); images and plots are seed 1's."
                               : std::string())
          << "</p>\n";
     html << "<p>Reference noise: " << htmlEscape(noiseCheckText(report)) << ".</p>\n";

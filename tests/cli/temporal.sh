@@ -90,6 +90,17 @@ assert d["tracked"]["choice"].startswith("grid") and len(d["tracked"]["pixels"])
 assert 0.03 < d["techniques"][0]["meanAbsToneMapped"] < 0.27, d["techniques"][0]
 PY
 test -s "$work/g/images/reference-f0000.png"
+# The same with --seeds 2: the image metrics become means over the seeds, seed 1 being run g.
+"$vplgi" compare "${args[@]}" --tracked-choice grid --tracked 4 --spp 2 --seeds 2 --out "$work/gs" > "$work/gs.log" 2> "$work/gs.err"
+python3 - "$work/g/metrics.json" "$work/gs/metrics.json" <<'PY'
+import json, sys
+g, s = (json.load(open(p))["techniques"][0] for p in sys.argv[1:])
+per = s["imageMetricsPerSeed"]
+for key in ("meanAbsToneMapped", "rmse", "meanLuminanceBias"):
+    assert len(per[key]) == 2 and per[key][0] == g[key] and per[key][0] != per[key][1], (key, per, g)
+    assert abs(s[key] - sum(per[key]) / 2) <= 1e-12 * abs(s[key]), (key, s[key], per[key])
+PY
+grep -q "image metrics' mean |E|, RMSE" "$work/gs/index.html"
 test -s "$work/g/images/smcir-rt-f0002-error.png"
 echo "temporal: grid choice, full-image reference"
 
