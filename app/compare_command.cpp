@@ -369,8 +369,6 @@ CompareTechniqueResult summarize(const TechniqueRun& run, const std::vector<std:
     result.temporal = temporalErrors(run.tracked, referenceTracked, exposure);
     result.seedAbsE = {result.temporal.meanAbsError};
     result.seedAbsEPrime = {result.temporal.meanAbsDerivative};
-    result.absE = meanInterval(result.seedAbsE);
-    result.absEPrime = meanInterval(result.seedAbsEPrime);
     std::vector<double> ms = run.frameMilliseconds;
     std::sort(ms.begin(), ms.end());
     result.medianFrameMs = ms.empty() ? 0.0 : ms[ms.size() / 2];
@@ -473,17 +471,14 @@ void addSeeds(const CompareOptions& o, const std::vector<TechniqueRun>& first, c
     for (std::size_t i = 0; i < first.size(); ++i) {
         CompareTechniqueResult& t = report.techniques[i];
         const std::vector<TemporalErrors>& seeds = perSeed[i];
-        t.seeds = static_cast<int>(seeds.size());
         t.seedAbsE.clear();
         t.seedAbsEPrime.clear();
         for (const TemporalErrors& e : seeds) {
             t.seedAbsE.push_back(e.meanAbsError);
             t.seedAbsEPrime.push_back(e.meanAbsDerivative);
         }
-        t.absE = meanInterval(t.seedAbsE);
-        t.absEPrime = meanInterval(t.seedAbsEPrime);
-        t.temporal.meanAbsError = t.absE.mean;
-        t.temporal.meanAbsDerivative = t.absEPrime.mean;
+        t.temporal.meanAbsError = meanInterval(t.seedAbsE).mean;
+        t.temporal.meanAbsDerivative = meanInterval(t.seedAbsEPrime).mean;
         // The image metrics (with a full-image reference): each the mean over the seeds.
         t.seedImageErrors = imagePerSeed[i];
         t.meanErrors = averageErrors(t.seedImageErrors);

@@ -257,12 +257,20 @@ std::string noiseCheckText(const CompareReport& report)
     return text.str();
 }
 
-// "0.0156 [0.0150, 0.0162] (4 seeds)" with compare --seeds, else "0.0156": a temporal metric.
-std::string seedsText(const MeanInterval& m, int seeds)
+// A metric over compare --seeds' seeds: "0.0156 [0.0150, 0.0162]" (the mean with its 95% interval),
+// or "0.0156" for one value; `unit` after the numbers.
+std::string seedsText(const std::vector<double>& values, int digits = 4, const std::string& unit = "")
 {
-    if (seeds <= 1) return formatNumber(m.mean);
-    return formatNumber(m.mean) + " [" + formatNumber(m.mean - m.halfWidth) + ", " + formatNumber(m.mean + m.halfWidth) +
-           "] (" + std::to_string(seeds) + " seeds)";
+    const MeanInterval m = meanInterval(values);
+    if (m.count <= 1) return formatNumber(m.mean, digits) + unit;
+    return formatNumber(m.mean, digits) + unit + " [" + formatNumber(m.mean - m.halfWidth, digits) + ", " +
+           formatNumber(m.mean + m.halfWidth, digits) + "]";
+}
+
+// The half-width of the 95% interval of a metric over the seeds (0 for one value).
+double seedsHalfWidth(const std::vector<double>& values)
+{
+    return meanInterval(values).halfWidth;
 }
 
 // "0.42 [0.35, 0.49]": a ratio with its interval.
@@ -292,7 +300,8 @@ std::string compareTemporalSummary(const CompareReport& report)
          << " s for both seeds):\n";
     for (const CompareTechniqueResult& t : report.techniques)
         text << "  " << t.name << (t.settings.empty() ? "" : " [" + t.settings + "]") << ": |E| "
-             << seedsText(t.absE, t.seeds) << "  |E'| " << seedsText(t.absEPrime, t.seeds) << "\n";
+             << seedsText(t.seedAbsE) << "  |E'| " << seedsText(t.seedAbsEPrime)
+             << (t.seeds() > 1 ? " (" + std::to_string(t.seeds()) + " seeds)" : std::string()) << "\n";
     text << "  " << noiseCheckText(report) << "\n";
     if (!report.against.empty()) {
         text << "difference from " << report.against << " (mean |A - B| after the tone map, 99.9th percentile;"
@@ -318,8 +327,8 @@ std::string compareCsv(const CompareReport& report)
         csv << t.name << "," << report.frames << "," << imageMetric(report, mean.meanAbsToneMapped, "") << ","
             << imageMetric(report, mean.p999AbsToneMapped, "") << "," << imageMetric(report, mean.rmse, "") << "," << imageMetric(report, mean.relativeMSE, "") << ","
             << imageMetric(report, mean.meanRelativeLuminance, "") << "," << t.temporal.meanAbsError << ","
-            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << t.seeds << "," << t.absE.halfWidth << ","
-            << t.absEPrime.halfWidth << "," << report.against << ",";
+            << t.temporal.meanAbsDerivative << "," << t.medianFrameMs << "," << t.seeds() << ","
+            << seedsHalfWidth(t.seedAbsE) << "," << seedsHalfWidth(t.seedAbsEPrime) << "," << report.against << ",";
         if (!report.against.empty())
             csv << t.againstErrors.meanAbsToneMapped << "," << t.againstErrors.p999AbsToneMapped << ","
                 << t.againstEPrime.ratio << "," << t.againstEPrime.low << "," << t.againstEPrime.high;
@@ -363,9 +372,9 @@ std::string compareJson(const CompareReport& report)
                       {"medianFrameMs", t.medianFrameMs},
                       // compare --seeds: temporalAbsE(Prime) are the means over the seeds, with the
                       // half-widths of their 95% Student-t intervals and the per-seed values.
-                      {"seeds", t.seeds},
-                      {"temporalAbsEHalf95", t.absE.halfWidth},
-                      {"temporalAbsEPrimeHalf95", t.absEPrime.halfWidth},
+                      {"seeds", t.seeds()},
+                      {"temporalAbsEHalf95", seedsHalfWidth(t.seedAbsE)},
+                      {"temporalAbsEPrimeHalf95", seedsHalfWidth(t.seedAbsEPrime)},
                       {"temporalAbsEPerSeed", t.seedAbsE},
                       {"temporalAbsEPrimePerSeed", t.seedAbsEPrime},
                       // The image metrics above are means over the seeds; per seed here (null
@@ -438,20 +447,17 @@ std::string metricsTableRows(const CompareReport& report)
             return report.imageMetrics ? formatNumber(value, digits) + unit : std::string("-");
         };
         // Over seeds (compare --seeds): the mean with its 95% interval.
-        auto seedsCell = [&](double ImageErrors::*field, double scale = 1.0, const char* unit = "") {
+        auto seedsCell = [&](double ImageErrors::*field, double scale = 1.0, int digits = 4, const char* unit = "") {
             if (!report.imageMetrics) return std::string("-");
             std::vector<double> values;
             for (const ImageErrors& e : t.seedImageErrors) values.push_back(scale * (e.*field));
-            if (t.seeds <= 1) return formatNumber(scale * (mean.*field)) + unit;
-            const MeanInterval m = meanInterval(values);
-            return formatNumber(m.mean) + unit + " [" + formatNumber(m.mean - m.halfWidth) + ", " +
-                   formatNumber(m.mean + m.halfWidth) + "]";
+            return seedsText(values, digits, unit);
         };
         table << "<tr><td>" << htmlEscape(t.name) << "</td><td>" << htmlEscape(t.settings) << "</td><td>"
               << seedsCell(&ImageErrors::meanAbsToneMapped) << "</td><td>" << cell(mean.p999AbsToneMapped) << "</td><td>"
               << seedsCell(&ImageErrors::rmse) << "</td><td>"
-              << cell(mean.relativeMSE) << "</td><td>" << seedsCell(&ImageErrors::meanRelativeLuminance, 100.0, "%")
-              << "</td><td>" << seedsText(t.absE, t.seeds) << "</td><td>" << seedsText(t.absEPrime, t.seeds)
+              << cell(mean.relativeMSE) << "</td><td>" << seedsCell(&ImageErrors::meanRelativeLuminance, 100.0, 3, "%")
+              << "</td><td>" << seedsText(t.seedAbsE) << "</td><td>" << seedsText(t.seedAbsEPrime)
               << "</td><td>" << formatNumber(t.medianFrameMs, 4);
         if (!report.against.empty())
             table << "</td><td>" << formatNumber(t.againstErrors.meanAbsToneMapped) << "</td><td>"

@@ -62,12 +62,12 @@ struct CompareTechniqueResult {
     std::string settings;                     // the --set overrides its session used, "key=value ..."
     ImageErrors againstErrors;                // against CompareReport::against's image, averaged over frames
     RatioInterval againstEPrime;              // |E'| / the against technique's |E'|, with its 95% interval
-    // compare --seeds: `temporal` and `meanErrors` are then means over the seeds (`temporal` per
-    // tracked pixel too); `tracked` and the images stay the first seed's.
-    int seeds = 1;                            // runs behind the temporal metrics (1: no seed of its own)
-    MeanInterval absE, absEPrime;             // |E| and |E'| over the seeds, 95% Student-t half-widths
-    std::vector<double> seedAbsE, seedAbsEPrime; // per seed, seed 1 first
-    std::vector<ImageErrors> seedImageErrors;  // per seed, each averaged over the frames; meanErrors is their mean
+    // Per seed, seed 1 first (one entry without compare --seeds or without a seed of its own).
+    // `temporal` and `meanErrors` are their means (`temporal` per tracked pixel too); `tracked` and
+    // the images stay the first seed's.
+    std::vector<double> seedAbsE, seedAbsEPrime;
+    std::vector<ImageErrors> seedImageErrors; // each averaged over the frames
+    int seeds() const { return static_cast<int>(seedAbsE.size()); }
 };
 
 // Everything the compare report shows besides the images (written while rendering, named by
