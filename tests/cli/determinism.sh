@@ -3,7 +3,9 @@
 # seed: over two runs, with llvmpipe on 1 and 2 threads (and TBB on one CPU), and, for the techniques
 # with a sampler worker thread (smcir, ir, smcir-rt), with the worker off (<prefix>.synchronous=true). The scene animates its
 # light over several frames, so the worker's hand-over between frames is exercised. The images must
-# be lit and finite, or bit-identity would prove nothing.
+# be lit and finite, or bit-identity would prove nothing, and each technique's image must be brighter
+# than direct's (mean > 1.001x): it adds indirect light (the check `cli: every technique, two frames`
+# makes in the sanitizer build, here on these renders instead of ten more).
 # The worker overlaps the sampling of the next VPL set with the GPU frame, so its frame n shows the
 # set the synchronous mode shows at frame n - 1 (core/vpl/vpl_pipeline.h): on a still scene the
 # worker's frame 4 must be bit-identical to the synchronous frame 3.
@@ -46,13 +48,19 @@ same() { # same <technique> <what> <a.exr> <b.exr>
 techniques=$("$vplgi" scenes | sed -n 's/^techniques: //p')
 [ -n "$techniques" ] || { echo "FAIL: vplgi scenes listed no techniques"; exit 1; }
 count=0
-for t in $techniques; do
+direct=""
+for t in direct $(tr ' ' '\n' <<< "$techniques" | grep -vx direct); do
   count=$((count+1))
   render "$t" "$work/$t-a.exr" 2 "$scene" 3 || continue
   read -r mean bad < <(python3 "$here/exr_stats.py" mean "$work/$t-a.exr")
   if [ "$bad" -ne 0 ] || ! python3 -c "import sys; sys.exit(0 if $mean > 1e-3 else 1)"; then
     echo "FAIL: $t: mean radiance $mean, $bad non-finite values (a black or broken image proves nothing)"
     failures=$((failures+1)); continue
+  fi
+  [ "$t" = direct ] && direct=$mean
+  if [ "$t" != direct ] && ! python3 -c "import sys; sys.exit(0 if $mean > 1.001 * ${direct:-1e30} else 1)"; then
+    echo "FAIL: $t: mean radiance $mean does not exceed direct's ${direct:-(not rendered)}: no indirect light"
+    failures=$((failures+1))
   fi
   # A second run, on one CPU: equal to the first, it is equal over runs and over thread counts.
   render "$t" "$work/$t-c.exr" 1 "$scene" 3 &&
