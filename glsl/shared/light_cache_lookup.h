@@ -106,14 +106,6 @@ VPLGI_FUNC float lightCacheReachFraction(uvec4 reach, int i)
     return float((reach[i / 4] >> uint(8 * (i % 4))) & 0xffu) / 255.0f;
 }
 
-// Where reach ray i (i < 15) stopped, in the tangent plane's (x, y) [m]; a ray that hit nothing
-// within the radius stops at the radius.
-VPLGI_FUNC vec2 lightCacheReachPoint(uvec4 reach, int i, float radius)
-{
-    float azimuth = 6.28318531f * float(i) / float(kLightCacheReachAzimuths);
-    return lightCacheReachFraction(reach, i) * radius * vec2(cos(azimuth), sin(azimuth));
-}
-
 // The distance along the unit direction u (tangent-plane coordinates) to the line through p and q,
 // at most `radius`; `radius` when u runs parallel to the line or away from it.
 VPLGI_FUNC float lightCacheReachToLine(vec2 u, vec2 p, vec2 q, float radius)
@@ -124,19 +116,22 @@ VPLGI_FUNC float lightCacheReachToLine(vec2 u, vec2 p, vec2 q, float radius)
     return t > 0.0f ? min(t, radius) : radius;
 }
 
-// True when reach ray i (i < 15) hit something within the radius.
-VPLGI_FUNC bool lightCacheReachHit(uvec4 reach, int i)
+// The distance along u to the wall through the hit points p and q of two reach rays
+// (lightCacheReachToLine), or `radius` when either ray hit nothing.
+VPLGI_FUNC float lightCacheReachToWall(bool hitP, vec2 p, bool hitQ, vec2 q, vec2 u, float radius)
 {
-    return lightCacheReachFraction(reach, i) < 1.0f;
+    return hitP && hitQ ? lightCacheReachToLine(u, p, q, radius) : radius;
 }
 
-// The distance along u to the wall through the hits of rays i and j (lightCacheReachToLine), or
-// `radius` when either of them hit nothing.
-VPLGI_FUNC float lightCacheReachToWall(uvec4 reach, int i, int j, vec2 u, float radius)
+// cos and sin of the angle between neighbouring reach rays, 2 pi / 15.
+VPLGI_CONST float kLightCacheReachStepCos = 0.91354546f;
+VPLGI_CONST float kLightCacheReachStepSin = 0.40673664f;
+
+// d turned by +-2 pi / 15 in the tangent plane.
+VPLGI_FUNC vec2 lightCacheReachTurn(vec2 d, float sign)
 {
-    if (!lightCacheReachHit(reach, i) || !lightCacheReachHit(reach, j)) return radius;
-    return lightCacheReachToLine(u, lightCacheReachPoint(reach, i, radius), lightCacheReachPoint(reach, j, radius),
-                                 radius);
+    return vec2(kLightCacheReachStepCos * d.x - sign * kLightCacheReachStepSin * d.y,
+                sign * kLightCacheReachStepSin * d.x + kLightCacheReachStepCos * d.y);
 }
 
 // True when the point at `offset` (x - c) from a cache with normal `normal` lies within the cache's
@@ -148,6 +143,11 @@ VPLGI_FUNC float lightCacheReachToWall(uvec4 reach, int i, int j, vec2 u, float 
 // extended (so a wall seen from a cache beside it ends where it runs parallel to the direction, not
 // at the open ray's radius); a lone hit counts up to the half-way azimuth. Tolerance: the lift
 // (quantization takes up to 1/255 of the radius).
+// Speed (not in the paper): the four rays around the point's azimuth (before, i0, i1, after) are read
+// once, their directions come from one cos/sin pair turned by the fixed step, and the three walls are
+// evaluated for every case, then selected: on llvmpipe each branch costs what its costliest lane does
+// and every call to cos/sin counts, and this test took about half of the interpolation pass when each
+// wall computed its own two directions (docs/lightskin.md, "The lookup's cost").
 VPLGI_FUNC bool lightCacheReaches(uvec4 reach, vec3 normal, vec3 offset, float radius)
 {
     float lift = kLightCacheReachLift * radius;
@@ -164,26 +164,36 @@ VPLGI_FUNC bool lightCacheReaches(uvec4 reach, vec3 normal, vec3 offset, float r
     int n = kLightCacheReachAzimuths;
     int i0 = min(int(floor(s)), n - 1);
     int i1 = (i0 + 1) % n, before = (i0 + n - 1) % n, after = (i1 + 1) % n;
-    bool hit0 = lightCacheReachHit(reach, i0), hit1 = lightCacheReachHit(reach, i1);
+    float fBefore = lightCacheReachFraction(reach, before), f0 = lightCacheReachFraction(reach, i0);
+    float f1 = lightCacheReachFraction(reach, i1), fAfter = lightCacheReachFraction(reach, after);
+    bool hitBefore = fBefore < 1.0f, hit0 = f0 < 1.0f, hit1 = f1 < 1.0f, hitAfter = fAfter < 1.0f;
+    // Where each ray stopped, in the tangent plane's (x, y) [m] (a ray that hit nothing: the radius).
+    // Ray i0's direction is u turned back by the angle t past it, t in [0, 2 pi / 15]: cos t and
+    // sin t by their Taylor series to t^8 and t^9 (truncation below 2e-10 at t = 0.42; cheaper than
+    // cos and sin of the full angle on llvmpipe).
+    float t = (s - float(i0)) * (6.28318531f / float(kLightCacheReachAzimuths));
+    float t2 = t * t;
+    float cosT = 1.0f + t2 * (-1.0f / 2.0f + t2 * (1.0f / 24.0f + t2 * (-1.0f / 720.0f + t2 * (1.0f / 40320.0f))));
+    float sinT = t * (1.0f + t2 * (-1.0f / 6.0f + t2 * (1.0f / 120.0f + t2 * (-1.0f / 5040.0f + t2 * (1.0f / 362880.0f)))));
+    vec2 d0 = vec2(cosT * u.x + sinT * u.y, cosT * u.y - sinT * u.x);
+    vec2 d1 = lightCacheReachTurn(d0, 1.0f);
+    vec2 p0 = f0 * radius * d0, p1 = f1 * radius * d1;
+    vec2 pBefore = fBefore * radius * lightCacheReachTurn(d0, -1.0f);
+    vec2 pAfter = fAfter * radius * lightCacheReachTurn(d1, 1.0f);
+    float chord = lightCacheReachToWall(hit0, p0, hit1, p1, u, radius);
+    float wallBefore = lightCacheReachToWall(hitBefore, pBefore, hit0, p0, u, radius);
+    float wallAfter = lightCacheReachToWall(hit1, p1, hitAfter, pAfter, u, radius);
+    bool nearHalf0 = s - float(i0) <= 0.5f;
     float reachHere = radius;
-    if (hit0 && hit1) {
+    if (hit0 && hit1)
         // The chord through the two hits, or the nearer of the walls through their outer neighbours
         // where that lies beyond the chord: a concave corner between the rays (the chord would cut
         // it off; the room is the intersection of its walls' half-planes).
-        reachHere = max(lightCacheReachToWall(reach, i0, i1, u, radius),
-                        min(lightCacheReachToWall(reach, before, i0, u, radius),
-                            lightCacheReachToWall(reach, i1, after, u, radius)));
-    } else if (hit1) {
-        if (lightCacheReachHit(reach, after))
-            reachHere = lightCacheReachToWall(reach, i1, after, u, radius);
-        else if (s - float(i0) > 0.5f)
-            reachHere = lightCacheReachFraction(reach, i1) * radius;
-    } else if (hit0) {
-        if (lightCacheReachHit(reach, before))
-            reachHere = lightCacheReachToWall(reach, before, i0, u, radius);
-        else if (s - float(i0) <= 0.5f)
-            reachHere = lightCacheReachFraction(reach, i0) * radius;
-    }
+        reachHere = max(chord, min(wallBefore, wallAfter));
+    else if (hit1)
+        reachHere = hitAfter ? wallAfter : (!nearHalf0 ? f1 * radius : radius);
+    else if (hit0)
+        reachHere = hitBefore ? wallBefore : (nearHalf0 ? f0 * radius : radius);
     return along <= reachHere + lift;
 }
 
@@ -231,12 +241,16 @@ VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float
                         vec3 offset = x - lightCachePosition(VPLGI_CACHES cache);
                         float d2 = dot(offset, offset);
                         if (!(d2 < radius2)) continue;
+                        if (result.count == slots &&
+                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
+                            continue;
+                        // The reach last: its record is the costliest read of the loop (on llvmpipe it
+                        // took about half of the pass at canyon's defaults), and a candidate the full
+                        // set rejects anyway need not read it. The filters commute, so the set is the
+                        // same in either order.
                         if (pass == 0 &&
                             (!(dot(n, cacheNormal) > kLightCacheReachMinCos) ||
                              !lightCacheReaches(lightCacheReach(VPLGI_CACHES cache), cacheNormal, offset, cellSize)))
-                            continue;
-                        if (result.count == slots &&
-                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
                             continue;
                         // Insertion: shift the farther entries one slot up (the last one drops out when full).
                         int j = min(result.count, slots - 1);
