@@ -32,6 +32,7 @@ void RenderScale::set(const std::string& key, const std::string& value)
         // first frame at full size can take a minute on llvmpipe (vsgl at 1280 x 720: 66 s).
         mScale = mAutomatic ? 0.0f : parseNumber(key, value, 0.05f, 1.0f);
         mSettle = 2;
+        mPreviousMs = 0.0;
     } else if (key == "viewer.targetMs") {
         mTargetMs = parseNumber(key, value, 1.0f, 60000.0f);
     } else {
@@ -77,16 +78,28 @@ bool RenderScale::adapt(double frameMs, glm::ivec2 window)
         --mSettle;
         return false;
     }
+    // The faster of the last two frames: one slow frame (a shadow map's rebuild) does not shrink the
+    // image, two in a row do.
+    const double previous = mPreviousMs;
+    mPreviousMs = frameMs;
+    if (previous <= 0.0) return false;
+    const double measured = std::min(previous, frameMs);
+    // The target is a ceiling: shrink above it, grow below kGrowBelow of it, each time aiming at kAim
+    // of it with frame time ~ pixels. A frame's fixed costs (not per pixel) make that aim safe both
+    // ways: after growing the frame is at most the aim (the fixed part does not grow), after
+    // shrinking at least the aim (it does not shrink), so the scale neither overshoots the target
+    // nor swings back.
+    if (measured <= mTargetMs && measured >= kGrowBelow * mTargetMs) return false;
     const float minimum = minimumScale(window);
     const float current = std::max(mScale, minimum);
-    const double ratio = mTargetMs / frameMs;
-    if (ratio >= 0.8 && ratio <= 1.25) return false;
-    // Steps of 1/64 (fewer reallocations of the render targets), at most 2x in area per change.
+    const double ratio = kAim * mTargetMs / measured;
+    // Steps of 1/64 down (fewer reallocations of the render targets), at most 2x in area per change.
     float next = current * static_cast<float>(std::sqrt(std::clamp(ratio, 0.5, 2.0)));
-    next = std::clamp(std::round(next * 64.0f) / 64.0f, minimum, 1.0f);
+    next = std::clamp(std::floor(next * 64.0f) / 64.0f, minimum, 1.0f);
     if (std::abs(next - current) < 1.0f / 128.0f) return false;
     mScale = next;
     mSettle = 2;
+    mPreviousMs = 0.0;
     return true;
 }
 

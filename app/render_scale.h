@@ -30,10 +30,13 @@ public:
 
     // The size the scene renders at for a window of `window` pixels.
     glm::ivec2 internalSize(glm::ivec2 window) const;
-    // After a frame of `frameMs` wall-clock milliseconds at `window`: the automatic scale moves toward
-    // the target (frame time ~ pixels: scale ~ sqrt(target / measured)), with a dead band of
-    // [0.8, 1.25] x target and two frames to settle after a change. Returns true when it changed.
+    // After a frame of `frameMs` wall-clock milliseconds at `window`: the automatic scale keeps the
+    // frame under the target. Measured: the faster of the last two frames (two frames to settle after
+    // a change). Above the target or below kGrowBelow x target it moves to aim at kAim x target (frame
+    // time ~ pixels: scale ~ sqrt(kAim target / measured), at most 2x in area, floored to 1/64).
+    // Returns true when it changed.
     bool adapt(double frameMs, glm::ivec2 window);
+    static constexpr double kAim = 0.85, kGrowBelow = 0.7;
 
     bool automatic() const { return mAutomatic; }
     bool adapting() const { return mAutomatic && mSoftware; }
@@ -49,6 +52,7 @@ private:
     float mScale = 1.0f;     // fixed, or the automatic one's current value
     float mTargetMs = 500.0f;
     int mSettle = 2;         // frames before the next measurement counts (the first ones allocate)
+    double mPreviousMs = 0;  // the last counted frame since the last change (0: none yet)
 };
 
 } // namespace vplgi
