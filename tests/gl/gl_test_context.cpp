@@ -31,6 +31,18 @@ const gl::ShaderLoader& shaders()
     return loader;
 }
 
+gl::Texture uploadR32F(const std::string& label, const std::vector<float>& texels, int width, int height, int levels)
+{
+    gl::TextureDesc desc;
+    desc.format = GL_R32F;
+    desc.width = width;
+    desc.height = height;
+    desc.levels = levels;
+    gl::Texture texture(label, desc);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, texels.data());
+    return texture;
+}
+
 std::string saveTestImage(const std::string& name, const ImageRGBA32F& image)
 {
     std::filesystem::create_directories(VPLGI_TEST_OUTPUT_DIR);

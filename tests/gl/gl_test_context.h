@@ -34,6 +34,9 @@ const gl::ShaderLoader& shaders();
 std::string objectLabel(GLenum identifier, GLuint id);
 // Writes `image` under the test output directory (for failures) and returns the path.
 std::string saveTestImage(const std::string& name, const ImageRGBA32F& image);
+// A GL_R32F texture of width x height (`levels` mip levels) with `texels` (row-major, width * height)
+// in level 0: the importance maps the sampler tests build.
+gl::Texture uploadR32F(const std::string& label, const std::vector<float>& texels, int width, int height, int levels = 1);
 // Runs the compute probe tests/gl/glsl/<file> (local size 64, SSBO 0 the `count` input cases,
 // SSBO 1 resultsPerCase vec4 per case, uniform uCount) and returns the results: how the GL tests
 // evaluate a shared header in GLSL next to its C++ build.

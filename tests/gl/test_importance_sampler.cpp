@@ -45,13 +45,7 @@ std::vector<float> syntheticImportance()
 
 gl::Texture uploadImportance(const std::vector<float>& map, int width, int height)
 {
-    gl::TextureDesc desc;
-    desc.format = GL_R32F;
-    desc.width = width;
-    desc.height = height;
-    gl::Texture texture("importance map", desc);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RED, GL_FLOAT, map.data());
-    return texture;
+    return test::uploadR32F("importance map", map, width, height);
 }
 
 // Distance in units in the last place between two positive floats.
@@ -223,13 +217,7 @@ TEST_CASE("the importance map's box mips equal the CPU twin's bit for bit, six l
     std::vector<float> level(static_cast<std::size_t>(width * size));
     for (float& v : level)
         v = rng.uniform() < 0.3f ? 0.0f : rng.uniform() * std::ldexp(1.0f, static_cast<int>(rng.below(20)) - 10);
-    gl::TextureDesc desc;
-    desc.format = GL_R32F;
-    desc.width = width;
-    desc.height = size;
-    desc.levels = levels;
-    gl::Texture texture("importance map with mips", desc);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, width, size, GL_RED, GL_FLOAT, level.data());
+    gl::Texture texture = test::uploadR32F("importance map with mips", level, width, size, levels);
     ImportanceSampler sampler(test::shaders());
     sampler.buildMips(texture, NextRead::TextureReadback);
     int w = width, h = size;
@@ -254,7 +242,8 @@ TEST_CASE("the importance map's box mips equal the CPU twin's bit for bit, six l
     gl::checkDebugMessages();
 
     // Sides that do not halve exactly at every level: one clear error.
-    gl::TextureDesc odd = desc;
+    gl::TextureDesc odd;
+    odd.format = GL_R32F;
     odd.width = 24;
     odd.height = 8;
     odd.levels = 4; // 24 -> 12 -> 6 -> 3 but 8 -> 4 -> 2 -> 1: fine; a fifth level would not be

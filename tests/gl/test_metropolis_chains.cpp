@@ -44,13 +44,7 @@ std::vector<float> islandsMap()
 
 gl::Texture upload(const std::vector<float>& map)
 {
-    gl::TextureDesc desc;
-    desc.format = GL_R32F;
-    desc.width = kWidth;
-    desc.height = kHeight;
-    gl::Texture texture("chain test importance", desc);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, kWidth, kHeight, GL_RED, GL_FLOAT, map.data());
-    return texture;
+    return test::uploadR32F("chain test importance", map, kWidth, kHeight);
 }
 
 struct ChiSquare {
