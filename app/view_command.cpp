@@ -412,17 +412,17 @@ void Viewer::applySoftwareDefaults()
     };
     // On cornell at 320 x 180 (2 cores, `render` per-pass times): vsgl 2.0 s -> 0.34 s a frame, of it
     // the BRSM PDF 0.72 s -> 0.05 s (RSM texels x view lights) and the radiance estimation 1.01 s ->
-    // 0.23 s (pixels x lights); vpl-brsm 1.9 s -> 0.32 s. lightskin on canyon 0.80 s -> 0.44 s (`bench`: importance 69 -> 18 ms
-    // with rsm 128, proxy lights 142 -> 107 ms and occlusion 82 -> 52 ms with 1797 caches instead of
-    // 2410; its interpolation, about 0.24 s, does not shrink with the budget).
+    // 0.23 s (pixels x lights); vpl-brsm 1.9 s -> 0.32 s. lightskin on canyon 0.80 s -> 0.44 s
+    // (`bench`: importance 69 -> 18 ms with rsm 128, proxy lights 142 -> 107 ms and occlusion 82 -> 52 ms
+    // with 1797 caches instead of 2410; its interpolation, about 0.24 s, does not shrink with the budget).
     static const Lighter kLighter[] = {
         {"smcir", "smcir.mapsPerFrame", "64"}, // the shadow maps' first build spread over frames
         {"ir", "ir.mapsPerFrame", "64"},
         {"mir", "mir.mapsPerFrame", "64"},
         {"mir", "mir.resamplingRate", "64"}, // 128 k light-path candidates instead of 512 k (the paper: 256:1)
-        {"lightskin", "rsm.size", "128"}, // LightSkin's 1024^2 RSM (its VALs): 64x fewer texels (importance 69 -> 18 ms)
+        {"lightskin", "rsm.size", "128"}, // LightSkin's 1024^2 RSM (its VALs): 64x fewer texels
         {"lightskin", "lightskin.valCount", "512"}, // proxy lights: 4x fewer VALs per cache (the paper: 2048)
-        {"lightskin", "lightskin.cacheTarget", "768"}, // canyon: 1797 caches (4050 by default): proxy lights 0.75x, occlusion ~0.6x of 1024's
+        {"lightskin", "lightskin.cacheTarget", "768"}, // canyon: 1797 caches instead of 4050
         {"lightskin-full", "rsm.size", "64"}, // every VAL lights every cache: 4096 of them
         {"vsgl", "rsm.size", "128"},      // the BRSM's texels, 4x fewer
         {"vsgl", "vsgl.count", "256"},    // lights per pixel, 4x fewer (the paper: 1024)

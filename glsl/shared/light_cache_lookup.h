@@ -147,7 +147,7 @@ VPLGI_FUNC vec2 lightCacheReachTurn(vec2 d, float sign)
 // once, their directions come from one cos/sin pair turned by the fixed step, and the three walls are
 // evaluated for every case, then selected: on llvmpipe each branch costs what its costliest lane does
 // and every call to cos/sin counts, and this test took about half of the interpolation pass when each
-// wall computed its own two directions (docs/lightskin.md, "The lookup's cost").
+// wall computed its own two directions (docs/lightskin.md, "The technique": the lookup's probes).
 VPLGI_FUNC bool lightCacheReaches(uvec4 reach, vec3 normal, vec3 offset, float radius)
 {
     float lift = kLightCacheReachLift * radius;
@@ -241,16 +241,12 @@ VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float
                         vec3 offset = x - lightCachePosition(VPLGI_CACHES cache);
                         float d2 = dot(offset, offset);
                         if (!(d2 < radius2)) continue;
-                        if (result.count == slots &&
-                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
-                            continue;
-                        // The reach last: its record is the costliest read of the loop (on llvmpipe it
-                        // took about half of the pass at canyon's defaults), and a candidate the full
-                        // set rejects anyway need not read it. The filters commute, so the set is the
-                        // same in either order.
                         if (pass == 0 &&
                             (!(dot(n, cacheNormal) > kLightCacheReachMinCos) ||
                              !lightCacheReaches(lightCacheReach(VPLGI_CACHES cache), cacheNormal, offset, cellSize)))
+                            continue;
+                        if (result.count == slots &&
+                            !lightCacheBefore(d2, cache, result.distance2[slots - 1], result.index[slots - 1]))
                             continue;
                         // Insertion: shift the farther entries one slot up (the last one drops out when full).
                         int j = min(result.count, slots - 1);

@@ -146,15 +146,9 @@ ComputePass drawGeneration(int count, int size, int levels, float k, const gl::B
 // An R32F importance map (the .r of `values`) with `levels` box mips by the technique's own pass.
 gl::Texture uploadImportance(const char* name, const std::vector<glm::vec4>& values, int size, int levels)
 {
-    gl::TextureDesc desc;
-    desc.format = GL_R32F;
-    desc.width = size;
-    desc.height = size;
-    desc.levels = levels;
-    gl::Texture map(name, desc);
     std::vector<float> texels;
     for (const glm::vec4& v : values) texels.push_back(v.r);
-    glTextureSubImage2D(map.id(), 0, 0, 0, size, size, GL_RED, GL_FLOAT, texels.data());
+    gl::Texture map = test::uploadR32F(name, texels, size, size, levels);
     memoryBarrier(NextRead::Image);
     ImportanceSampler(test::shaders()).buildMips(map, NextRead::TextureFetch);
     return map;
