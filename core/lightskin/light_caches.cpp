@@ -752,33 +752,59 @@ void buildLightCacheGrid(LightCacheSet& set, float cellSize)
         }
     }
     grid.origin = lower;
-    for (;;) {
-        const glm::dvec3 cells = glm::floor(glm::dvec3(upper - lower) / static_cast<double>(cellSize)) + 1.0;
-        if (cells.x * cells.y * cells.z <= static_cast<double>(kMaxLightCacheGridCells)) {
-            grid.dims = glm::ivec3(cells);
-            break;
-        }
-        cellSize *= 1.25f; // coarser cells: more caches per cell, the lookup ball grows with them
-    }
     grid.cellSize = cellSize;
-    const auto cellOf = [&](const glm::vec3& p) {
-        // The same expression as glsl/shared/light_cache_lookup.h, clamped for rounding at the upper end.
-        const glm::ivec3 c = glm::ivec3(glm::floor((p - grid.origin) / grid.cellSize));
-        const glm::ivec3 k = glm::clamp(c, glm::ivec3(0), grid.dims - glm::ivec3(1));
-        return static_cast<std::size_t>((k.z * grid.dims.y + k.y) * grid.dims.x + k.x);
-    };
-    const std::size_t cellCount = static_cast<std::size_t>(grid.dims.x) * static_cast<std::size_t>(grid.dims.y) *
-                                  static_cast<std::size_t>(grid.dims.z);
-    // Counting sort: caches visited in index order, so each cell's list is sorted by index.
-    grid.cellStart.assign(cellCount + 1, 0);
-    for (const LightCache& c : set.caches)
-        ++grid.cellStart[cellOf(c.position) + 1];
-    for (std::size_t i = 0; i < cellCount; ++i)
-        grid.cellStart[i + 1] += grid.cellStart[i];
-    grid.cacheIndices.assign(set.caches.size(), 0);
-    std::vector<std::uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
-    for (std::size_t i = 0; i < set.caches.size(); ++i)
-        grid.cacheIndices[fill[cellOf(set.caches[i].position)]++] = static_cast<std::uint32_t>(i);
+    const glm::dvec3 span = glm::floor(glm::dvec3(upper - lower) / static_cast<double>(cellSize));
+    require(glm::all(glm::lessThan(span, glm::dvec3(shared::kLightCacheCellAxisLimit))),
+            "light caches: the scene spans more than 2^21 cache distances along an axis (d_eps " +
+                std::to_string(cellSize) + " m); set lightskin.cacheDistance larger");
+    // Each cache's cell, by the same expression as glsl/shared/light_cache_lookup.h (>= 0: the origin
+    // is the lower corner), keyed; sorted by (key, index), so each cell's caches are in index order.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(set.caches.size());
+    for (std::size_t i = 0; i < set.caches.size(); ++i) {
+        const glm::ivec3 cell =
+            glm::clamp(glm::ivec3(glm::floor((set.caches[i].position - grid.origin) / grid.cellSize)), glm::ivec3(0),
+                       glm::ivec3(shared::kLightCacheCellAxisLimit - 1));
+        const glm::uvec2 key = shared::lightCacheCellKey(cell);
+        keyed[i] = {(static_cast<std::uint64_t>(key.y) << 32u) | key.x, static_cast<std::uint32_t>(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::size_t cells = 0;
+    for (std::size_t i = 0; i < keyed.size(); ++i)
+        cells += i == 0 || keyed[i].first != keyed[i - 1].first ? 1 : 0;
+    std::size_t slotCount = 1;
+    while (slotCount < 2 * cells) slotCount *= 2;
+    grid.slotMask = static_cast<std::uint32_t>(slotCount - 1);
+    grid.maxProbe = 0;
+    grid.slots.assign(slotCount, glm::uvec4(0u, shared::kLightCacheEmptySlot, 0u, 0u));
+    // Linear probing, cells in key order; each occupied slot first gets its cell's range in `keyed`.
+    for (std::size_t first = 0; first < keyed.size();) {
+        std::size_t last = first + 1;
+        while (last < keyed.size() && keyed[last].first == keyed[first].first) ++last;
+        const std::uint64_t key = keyed[first].first;
+        const glm::ivec3 cell(static_cast<int>(key & 0x1fffffu), static_cast<int>((key >> 21u) & 0x1fffffu),
+                              static_cast<int>(key >> 42u));
+        std::uint32_t slot = shared::lightCacheCellHash(cell) & grid.slotMask;
+        int probe = 0;
+        while (grid.slots[slot].y != shared::kLightCacheEmptySlot) {
+            slot = (slot + 1u) & grid.slotMask;
+            ++probe;
+        }
+        grid.maxProbe = std::max(grid.maxProbe, probe);
+        grid.slots[slot] = glm::uvec4(static_cast<std::uint32_t>(key), static_cast<std::uint32_t>(key >> 32u),
+                                      static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last));
+        first = last;
+    }
+    // The index list slot by slot; each slot's range rewritten to point into it.
+    grid.cacheIndices.clear();
+    grid.cacheIndices.reserve(keyed.size());
+    for (glm::uvec4& s : grid.slots) {
+        if (s.y == shared::kLightCacheEmptySlot) continue;
+        const auto begin = static_cast<std::uint32_t>(grid.cacheIndices.size());
+        for (std::uint32_t i = s.z; i < s.w; ++i)
+            grid.cacheIndices.push_back(keyed[i].second);
+        s.z = begin;
+        s.w = static_cast<std::uint32_t>(grid.cacheIndices.size());
+    }
 }
 
 LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params, const ProgressSink& progress,

@@ -81,14 +81,15 @@ static_assert(sizeof(LightCache) == 64, "LightCache is four vec4 rows");
 // has that material, untextured: the material factors times the means of their textures
 // (computeUntexturedMaterials, the same table SMCIR's untextured VPLs use).
 
-struct LightCacheGrid { // uniform grid for the per-pixel lookup of the nearest caches
-    glm::vec3 origin{0.0f};
-    float cellSize = 1.0f; // d_eps, grown when the grid would exceed kMaxLightCacheGridCells
-    glm::ivec3 dims{0};
-    std::vector<std::uint32_t> cellStart;    // dims.x*dims.y*dims.z + 1 offsets into cacheIndices
-    std::vector<std::uint32_t> cacheIndices; // caches of each cell, sorted by index
+// The per-pixel lookup's cells: a spatial hash of a uniform grid (glsl/shared/light_cache_lookup.h).
+struct LightCacheGrid {
+    glm::vec3 origin{0.0f}; // the caches' lower corner: cell (0, 0, 0) starts here
+    float cellSize = 1.0f;  // d_eps
+    std::uint32_t slotMask = 0; // slots - 1: at least twice the occupied cells, a power of two
+    int maxProbe = 0;           // the furthest an occupied cell's slot lies past its hash
+    std::vector<glm::uvec4> slots;           // key low, key high (kLightCacheEmptySlot: free), begin, end
+    std::vector<std::uint32_t> cacheIndices; // caches of each occupied cell, slot by slot, sorted by index
 };
-constexpr std::int64_t kMaxLightCacheGridCells = std::int64_t(1) << 22; // 4M cells: 16 MiB of offsets
 
 struct LightCacheSet {
     std::vector<LightCache> caches;
@@ -115,14 +116,15 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
 LightCacheSet distributeLightCaches(const Scene& scene, const LightCacheParams& params, const ProgressSink& progress,
                                     const std::string& cacheDir);
 
-// Builds `set.grid` over set.caches with cell size `cellSize` (grown until the cell count is at most
-// kMaxLightCacheGridCells). distributeLightCaches calls it with d_eps.
+// Builds `set.grid` over set.caches with cell size `cellSize`: one slot per two occupied cells or
+// fewer, cells inserted in key order (deterministic). Throws Error when the caches span
+// kLightCacheCellAxisLimit cells or more along an axis. distributeLightCaches calls it with d_eps.
 void buildLightCacheGrid(LightCacheSet& set, float cellSize);
 
 // Readers for glsl/shared/light_cache_lookup.h (found by argument-dependent lookup).
-inline std::uint32_t lightCacheCellStart(const LightCacheSet& set, int cell)
+inline glm::uvec4 lightCacheSlot(const LightCacheSet& set, int slot)
 {
-    return set.grid.cellStart[static_cast<std::size_t>(cell)];
+    return set.grid.slots[static_cast<std::size_t>(slot)];
 }
 inline std::uint32_t lightCacheIndex(const LightCacheSet& set, int i)
 {
@@ -148,9 +150,9 @@ inline int nearestLightCaches(const LightCacheSet& set, const glm::vec3& x, cons
                               shared::LightCacheNeighbours& out, int k = shared::kMaxLightCacheNeighbours)
 {
     out.count = 0;
-    if (set.grid.cellStart.empty()) return 0;
-    shared::findNearestLightCaches(set, set.grid.origin, set.grid.cellSize, set.grid.dims, x, n, k, !set.reach.empty(),
-                                   out);
+    if (set.grid.slots.empty()) return 0;
+    shared::findNearestLightCaches(set, set.grid.origin, set.grid.cellSize, set.grid.slotMask, set.grid.maxProbe, x, n,
+                                   k, !set.reach.empty(), out);
     return out.count;
 }
 

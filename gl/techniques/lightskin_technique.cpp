@@ -129,7 +129,7 @@ void LightSkinTechnique::uploadCaches()
     const auto count = static_cast<GLsizeiptr>(std::max<std::size_t>(mCaches.caches.size(), 1));
     static_assert(sizeof(LightCache) == sizeof(shared::GpuLightCache), "LightCache is uploaded as GpuLightCache");
     mCacheBuffer = storageBufferOf("light caches", mCaches.caches);
-    mCellBuffer = storageBufferOf("light cache cells", mCaches.grid.cellStart);
+    mCellBuffer = storageBufferOf("light cache cells", mCaches.grid.slots);
     mIndexBuffer = storageBufferOf("light cache indices", mCaches.grid.cacheIndices);
     mReachBuffer = storageBufferOf("light cache reach", mCaches.reach);
     mProxies = gl::Buffer("proxy lights", count * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
@@ -332,7 +332,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         const LightCacheGrid& grid = mCaches.grid;
         shading.set("uGridOrigin", grid.origin);
         shading.set("uGridCellSize", grid.cellSize);
-        glProgramUniform3i(shading.id(), shading.uniformLocation("uGridDims"), grid.dims.x, grid.dims.y, grid.dims.z);
+        glProgramUniform1ui(shading.id(), shading.uniformLocation("uGridSlotMask"), grid.slotMask);
+        shading.set("uGridMaxProbe", grid.maxProbe);
         shading.set("uExponent", mParams.interpolationExponent);
         shading.set("uReach", mCaches.reach.empty() ? 0 : 1);
         shading.set("uFixedRadius", mParams.fixedRadius ? 1 : 0);

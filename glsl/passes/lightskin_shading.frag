@@ -22,12 +22,12 @@ layout(binding = kUnitGBufferEmission) uniform sampler2D uEmission;
 layout(binding = kUnitGBufferSurfaceNormals) uniform sampler2D uSurfaceNormals;
 
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
-layout(std430, binding = kBindingLightCacheCells) readonly buffer Cells { uint cellStart[]; };
+layout(std430, binding = kBindingLightCacheCells) readonly buffer Cells { uvec4 cellSlots[]; };
 layout(std430, binding = kBindingLightCacheIndices) readonly buffer Indices { uint cacheIndices[]; };
 layout(std430, binding = kBindingProxyLights) readonly buffer Proxies { ProxyLight proxies[]; };
 layout(std430, binding = kBindingLightCacheReach) readonly buffer Reach { uvec4 reach[]; };
 
-uint lightCacheCellStart(int cell) { return cellStart[cell]; }
+uvec4 lightCacheSlot(int slot) { return cellSlots[slot]; }
 uint lightCacheIndex(int i) { return cacheIndices[i]; }
 vec3 lightCachePosition(int cache) { return caches[cache].positionArea.xyz; }
 vec3 lightCacheNormal(int cache) { return caches[cache].normalRoughness.xyz; }
@@ -36,7 +36,8 @@ uvec4 lightCacheReach(int cache) { return reach[cache]; }
 
 uniform vec3 uGridOrigin;
 uniform float uGridCellSize;
-uniform ivec3 uGridDims;
+uniform uint uGridSlotMask; // the cells' hash table: slots - 1
+uniform int uGridMaxProbe;
 uniform float uExponent; // p of eq. (8)
 uniform int uReach;      // 1: each cache's reach limits its points (lightskin.reach; not in the paper)
 uniform int uFixedRadius; // 1: d_max of eq. (8) is the search radius (lightskin.fixedRadius; not in the paper)
@@ -81,7 +82,8 @@ void main()
     vec3 f0 = mix(vec3(0.04 * specularFactor), baseMetallic.rgb, baseMetallic.a);
 
     LightCacheNeighbours near;
-    findNearestLightCaches(uGridOrigin, uGridCellSize, uGridDims, x, ni, kMaxLightCacheNeighbours, uReach != 0, near);
+    findNearestLightCaches(uGridOrigin, uGridCellSize, uGridSlotMask, uGridMaxProbe, x, ni, kMaxLightCacheNeighbours,
+                           uReach != 0, near);
     if (near.count == 0) return;
     // d_max of eq. (8): the paper's farthest cache of the set moves when a cache enters or leaves the
     // set (a seam between pixels with different sets); the fixed search radius does not.

@@ -37,7 +37,7 @@ VPLGI_CONST int kBindingISMLights = 16;          // SSBO vec4[]: the lights' rec
 
 // Storage buffers of LightSkin (gl/techniques/lightskin_technique, glsl/shared/lightskin_gpu.h).
 VPLGI_CONST int kBindingLightCaches = 17;        // SSBO GpuLightCache[] (world space)
-VPLGI_CONST int kBindingLightCacheCells = 18;    // SSBO uint[]: first entry of each grid cell in the index list (+1 end)
+VPLGI_CONST int kBindingLightCacheCells = 18;    // SSBO uvec4[]: the cells' hash slots (glsl/shared/light_cache_lookup.h)
 VPLGI_CONST int kBindingLightCacheIndices = 19;  // SSBO uint[]: cache indices, cell by cell
 VPLGI_CONST int kBindingProxyLights = 20;        // SSBO ProxyLight[]: per cache, diffuse and glossy
 VPLGI_CONST int kBindingViewSamples = 21;        // SSBO ViewSample[]: G-buffer samples at Halton points

@@ -3,14 +3,17 @@
 // interpolation of eq. (9). Compiled as GLSL (the interpolation pass) and as C++
 // (core/lightskin/light_caches.h, nearestLightCaches: the CPU twin the tests check against brute force).
 //
-// The caches live in a uniform grid (LightCacheGrid): cell c holds the caches whose position falls in
-// it, as cacheIndices[cellStart[c] .. cellStart[c+1]), sorted by cache index. A point's own cell and
-// its 26 neighbours contain every cache closer than one cell edge, in every direction; caches further
-// away are only partly covered (some directions reach two cells, others one), so the search takes
-// exactly the caches with |x - c|^2 < cellSize^2: a fixed ball, the same in every direction. The grid
-// is built with cellSize = d_eps (larger only when the cell count is capped), and d_eps is the largest
-// distance between a surface point and its cache (paper section 3), so the ball holds the caches that
-// can represent x.
+// The caches live in cells of a uniform grid (LightCacheGrid) kept as a spatial hash (ours; the paper
+// does not say how the lookup finds its caches): only cells that hold a cache are stored, each in one
+// slot of a table of 2^m slots found by hashing its integer coordinates (lightCacheCellHash) and
+// probing linearly. A slot holds the cell's key and the range cacheIndices[begin .. end) of its
+// caches, sorted by cache index. Memory follows the caches, not the scene's extent, so an open world
+// keeps cellSize = d_eps (a dense grid had to be capped, and widened its cells and the search radius
+// with them). A point's own cell and its 26 neighbours contain every cache closer than one cell edge,
+// in every direction; caches further away are only partly covered (some directions reach two cells,
+// others one), so the search takes exactly the caches with |x - c|^2 < cellSize^2: a fixed ball, the
+// same in every direction. cellSize = d_eps, the largest distance between a surface point and its
+// cache (paper section 3), so the ball holds the caches that can represent x.
 //
 // Only caches facing the point's side are candidates: eq. (8) weights a cache by (n_x . n_c)+, so a
 // cache with n_x . n_c <= 0 gets weight zero and would only take a slot (and stretch d_c,max, the
@@ -28,7 +31,7 @@
 // candidate of that cache.
 //
 // The includer provides five readers, declared before including this header:
-//   GLSL: uint lightCacheCellStart(int cell); uint lightCacheIndex(int i);
+//   GLSL: uvec4 lightCacheSlot(int slot); uint lightCacheIndex(int i);
 //         vec3 lightCachePosition(int cache); vec3 lightCacheNormal(int cache);
 //         uvec4 lightCacheReach(int cache);
 //   C++:  the same functions with a leading `const Caches&` argument, found by argument-dependent
@@ -64,6 +67,44 @@ struct LightCacheNeighbours {
 VPLGI_FUNC bool lightCacheBefore(float d2, int i, float e2, int j)
 {
     return d2 < e2 || (d2 == e2 && i < j);
+}
+
+// --- The cells' spatial hash ---------------------------------------------------------------------
+// Cell coordinates count from the grid's origin (the caches' lower corner), each below
+// kLightCacheCellAxisLimit (2^21 cells of d_eps: 2000 km at 1 m), so a cell's key packs into 63 bits.
+VPLGI_CONST int kLightCacheCellAxisLimit = 1 << 21;
+VPLGI_CONST uint kLightCacheEmptySlot = 0xffffffffu; // a slot record's key-high word when the slot is free
+
+// A slot record is a uvec4: the key's low and high words, then the first and the end entry of the
+// cell's caches in cacheIndices. The key of a cell in [0, kLightCacheCellAxisLimit)^3: x in bits 0-20,
+// y in 21-41, z in 42-62 (so the high word is below 2^31 and never kLightCacheEmptySlot).
+VPLGI_FUNC uvec2 lightCacheCellKey(ivec3 cell)
+{
+    uint x = uint(cell.x), y = uint(cell.y), z = uint(cell.z);
+    return uvec2(x | (y << 21u), (y >> 11u) | (z << 10u));
+}
+
+// The slot a cell's probing starts at, before masking (Teschner et al. 2003's three primes).
+VPLGI_FUNC uint lightCacheCellHash(ivec3 cell)
+{
+    return (uint(cell.x) * 73856093u) ^ (uint(cell.y) * 19349663u) ^ (uint(cell.z) * 83492791u);
+}
+
+// Finds the slot of `cell` (inside [0, kLightCacheCellAxisLimit)^3) in a table of slotMask + 1 slots
+// where no cell lies more than maxProbe slots past its hash: true and the slot's record, or false
+// when the cell holds no cache (a free slot, or maxProbe + 1 slots without its key).
+VPLGI_CACHES_TEMPLATE
+VPLGI_FUNC bool findLightCacheCell(VPLGI_CACHES_PARAM ivec3 cell, uint slotMask, int maxProbe, VPLGI_OUT(uvec4) record)
+{
+    uvec2 key = lightCacheCellKey(cell);
+    uint slot = lightCacheCellHash(cell) & slotMask;
+    for (int probe = 0; probe <= maxProbe; ++probe) {
+        record = lightCacheSlot(VPLGI_CACHES int(slot));
+        if (record.x == key.x && record.y == key.y) return true;
+        if (record.y == kLightCacheEmptySlot) return false;
+        slot = (slot + 1u) & slotMask;
+    }
+    return false;
 }
 
 // --- Reach -----------------------------------------------------------------------------------------
@@ -198,15 +239,16 @@ VPLGI_FUNC bool lightCacheReaches(uvec4 reach, vec3 normal, vec3 offset, float r
 }
 
 // The k (clamped to [0, 16]) nearest caches to x with n_x . n_c > 0 and |x - c| < cellSize, searched
-// in the 3 x 3 x 3 cells around x of the grid (origin, cellSize, dims). A point outside the grid
-// searches the cells of its block that exist. With `useReach`, only caches whose reach holds x
+// in the 3 x 3 x 3 cells around x of the grid (origin, cellSize; its hash table of slotMask + 1
+// slots, maxProbe as findLightCacheCell). A point outside the grid searches the cells of its block
+// that exist. With `useReach`, only caches whose reach holds x
 // (lightCacheReaches with the radius cellSize) and within 60 degrees of n (kLightCacheReachMinCos);
 // when no cache reaches x (0.1-0.2% of the points the
 // built-in scenes' cameras see, in doorways and tight corners where the 15 rays miss an opening),
 // the caches without the test rather than a black pixel.
 VPLGI_CACHES_TEMPLATE
-VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float cellSize, ivec3 gridDims, vec3 x,
-                                       vec3 n, int k, bool useReach, VPLGI_OUT(LightCacheNeighbours) result)
+VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float cellSize, uint slotMask, int maxProbe,
+                                       vec3 x, vec3 n, int k, bool useReach, VPLGI_OUT(LightCacheNeighbours) result)
 {
     result.count = 0;
     int slots = min(max(k, 0), kMaxLightCacheNeighbours);
@@ -215,14 +257,14 @@ VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float
     for (int pass = useReach ? 0 : 1; pass < 2 && result.count == 0; ++pass) {
         vec3 cellPosition = floor((x - gridOrigin) / cellSize);
         // Clamp before converting: a point far outside the grid must not overflow int.
-        cellPosition = clamp(cellPosition, vec3(-2.0f), vec3(gridDims) + vec3(1.0f));
+        cellPosition = clamp(cellPosition, vec3(-2.0f), vec3(float(kLightCacheCellAxisLimit) + 1.0f));
         ivec3 centre = ivec3(cellPosition);
         for (int dz = -1; dz <= 1; ++dz) {
             for (int dy = -1; dy <= 1; ++dy) {
                 for (int dx = -1; dx <= 1; ++dx) {
                     ivec3 cell = centre + ivec3(dx, dy, dz);
-                    if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= gridDims.x || cell.y >= gridDims.y ||
-                        cell.z >= gridDims.z)
+                    if (cell.x < 0 || cell.y < 0 || cell.z < 0 || cell.x >= kLightCacheCellAxisLimit ||
+                        cell.y >= kLightCacheCellAxisLimit || cell.z >= kLightCacheCellAxisLimit)
                         continue;
                     // Speed only: a cell whose box lies wholly outside the search ball holds no candidate
                     // (the box grown by a thousandth of a cell, so a cache that rounding put in the cell
@@ -231,9 +273,10 @@ VPLGI_FUNC void findNearestLightCaches(VPLGI_CACHES_PARAM vec3 gridOrigin, float
                     vec3 cellMin = gridOrigin + vec3(cell) * cellSize;
                     vec3 gap = max(max(cellMin - x, x - cellMin - vec3(cellSize)) - vec3(1e-3f * cellSize), vec3(0.0f));
                     if (!(dot(gap, gap) < radius2)) continue;
-                    int cellIndex = (cell.z * gridDims.y + cell.y) * gridDims.x + cell.x;
-                    int begin = int(lightCacheCellStart(VPLGI_CACHES cellIndex));
-                    int end = int(lightCacheCellStart(VPLGI_CACHES cellIndex + 1));
+                    uvec4 record = uvec4(0u);
+                    if (!findLightCacheCell(VPLGI_CACHES cell, slotMask, maxProbe, record)) continue;
+                    int begin = int(record.z);
+                    int end = int(record.w);
                     for (int i = begin; i < end; ++i) {
                         int cache = int(lightCacheIndex(VPLGI_CACHES i));
                         vec3 cacheNormal = lightCacheNormal(VPLGI_CACHES cache);

@@ -106,8 +106,9 @@ bool sameBits(const LightCacheSet& a, const LightCacheSet& b)
 {
     return a.caches.size() == b.caches.size() &&
            std::memcmp(a.caches.data(), b.caches.data(), a.caches.size() * sizeof(LightCache)) == 0 &&
-           a.grid.cellStart == b.grid.cellStart && a.grid.cacheIndices == b.grid.cacheIndices &&
-           a.grid.dims == b.grid.dims && a.grid.origin == b.grid.origin && a.grid.cellSize == b.grid.cellSize &&
+           a.grid.slots == b.grid.slots && a.grid.cacheIndices == b.grid.cacheIndices &&
+           a.grid.slotMask == b.grid.slotMask && a.grid.maxProbe == b.grid.maxProbe && a.grid.origin == b.grid.origin &&
+           a.grid.cellSize == b.grid.cellSize &&
            a.instanceStart == b.instanceStart && a.distance == b.distance;
 }
 
@@ -423,13 +424,69 @@ TEST_CASE("light caches: the shared lookup finds the k nearest facing caches as 
     }
     compare(xs, ns, 16);
 
-    // A grid whose cells had to grow (asked for 1e-4 m: far over the cell cap).
-    buildLightCacheGrid(set, 1e-4f);
-    CHECK(static_cast<std::int64_t>(set.grid.dims.x) * set.grid.dims.y * set.grid.dims.z <= kMaxLightCacheGridCells);
-    CHECK(set.grid.cellStart.size() ==
-          static_cast<std::size_t>(set.grid.dims.x) * set.grid.dims.y * set.grid.dims.z + 1);
-    CHECK(set.grid.cellSize > 1e-4f);
+    // Cells of 2 mm: about 1e10 cells over the box, as many as caches occupied (a dense grid had to be
+    // capped at 4M cells and widened them); the radius stays what was asked.
+    buildLightCacheGrid(set, 2e-3f);
+    CHECK(set.grid.cellSize == 2e-3f);
+    CHECK(set.grid.slots.size() <= 4 * set.caches.size());
     compare(points.positions, points.normals, 16);
+    // Cells of 5 cm, so that points find caches, and the slot table's probing: collisions happen.
+    buildLightCacheGrid(set, 0.05f);
+    CHECK(set.grid.maxProbe > 0);
+    CHECK(compare(points.positions, points.normals, 4) > 100);
+}
+
+TEST_CASE("light caches: the lookup's spatial hash spans an open world at the asked radius", "[lightskin][caches]")
+{
+    // 20000 caches in clusters strewn over 200 km x 2 km x 200 km at d_eps 1 m: 4e13 cells, of which a
+    // few thousand are occupied. Every query (near a cluster, between clusters, beyond the world) finds
+    // what brute force finds, and the table holds at most four slots per cache.
+    std::mt19937 engine(9);
+    auto uniform = [&]() { return static_cast<float>(engine() >> 8u) * 0x1p-24f; };
+    LightCacheSet set;
+    std::vector<glm::vec3> centres;
+    for (int c = 0; c < 400; ++c)
+        centres.push_back(glm::vec3(2e5f * uniform(), 2e3f * uniform(), 2e5f * uniform()));
+    for (int i = 0; i < 20000; ++i) {
+        LightCache cache;
+        cache.position = centres[static_cast<std::size_t>(i % 400)] + 2.0f * (glm::vec3(uniform(), uniform(), uniform()) - 0.5f);
+        cache.normal = glm::normalize(glm::vec3(uniform(), uniform(), uniform()) - glm::vec3(0.5f, 0.2f, 0.5f));
+        set.caches.push_back(cache);
+    }
+    buildLightCacheGrid(set, 1.0f);
+    CHECK(set.grid.cellSize == 1.0f);
+    CHECK(set.grid.slots.size() <= 4 * set.caches.size());
+    CHECK(set.grid.maxProbe > 0);
+    int found = 0, mismatches = 0;
+    shared::LightCacheNeighbours near;
+    for (int q = 0; q < 4000; ++q) {
+        const glm::vec3 centre = centres[static_cast<std::size_t>(q % 400)];
+        const glm::vec3 x = q % 8 == 7 ? glm::vec3(2.4e5f * uniform() - 2e4f, 2e3f * uniform(), 2.4e5f * uniform() - 2e4f)
+                                       : centre + 3.0f * (glm::vec3(uniform(), uniform(), uniform()) - 0.5f);
+        const glm::vec3 n = glm::normalize(glm::vec3(uniform(), uniform(), uniform()) - 0.5f);
+        std::vector<std::pair<float, int>> expected;
+        for (std::size_t c = 0; c < set.caches.size(); ++c) {
+            const glm::vec3 offset = set.caches[c].position - x;
+            const float d2 = glm::dot(offset, offset);
+            if (glm::dot(n, set.caches[c].normal) > 0.0f && d2 < 1.0f) expected.emplace_back(d2, static_cast<int>(c));
+        }
+        std::sort(expected.begin(), expected.end());
+        expected.resize(std::min<std::size_t>(expected.size(), 16));
+        nearestLightCaches(set, x, n, near, 16);
+        bool same = near.count == static_cast<int>(expected.size());
+        for (int j = 0; same && j < near.count; ++j)
+            same = near.index[j] == expected[static_cast<std::size_t>(j)].second;
+        mismatches += same ? 0 : 1;
+        found += near.count;
+    }
+    INFO("caches found " << found << ", slots " << set.grid.slots.size() << ", max probe " << set.grid.maxProbe);
+    CHECK(found > 6000); // 12351 measured: the queries near a cluster find about 3.5 caches each
+    CHECK(mismatches == 0);
+    // More than 2^21 cells along an axis: one clear error, not a silently wider radius.
+    LightCacheSet wide;
+    wide.caches.resize(2);
+    wide.caches[1].position = glm::vec3(3e6f, 0.0f, 0.0f);
+    CHECK_THROWS_WITH(buildLightCacheGrid(wide, 1.0f), Catch::Contains("2^21"));
 }
 
 TEST_CASE("light caches: the reach is exact for a straight wall and a concave corner", "[lightskin][caches]")

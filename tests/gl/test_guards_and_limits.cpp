@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/lightskin/light_caches.h"
 #include "gl/api/context.h"
 #include "gl/api/limits.h"
 #include "gl/api/render_target.h"
@@ -212,15 +213,23 @@ TEST_CASE("lightskin: a pixel skips a cache whose proxy is not finite and keeps 
         proxies[i].glossyFlux = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     }
     proxies[0].diffuseFlux.x = std::numeric_limits<float>::quiet_NaN();
-    const std::vector<std::uint32_t> cellStart = {0u, 2u}, indices = {0u, 1u}; // one grid cell, both caches
+    LightCacheSet set; // the lookup's cells over the two caches: one cell of 2 m holds both
+    for (const shared::GpuLightCache& c : caches) {
+        LightCache cache;
+        cache.position = glm::vec3(c.positionArea);
+        cache.normal = glm::vec3(c.normalRoughness);
+        set.caches.push_back(cache);
+    }
+    buildLightCacheGrid(set, 2.0f);
+    REQUIRE(set.grid.cacheIndices.size() == 2u);
     gl::Buffer cacheBuffer("guard caches", static_cast<GLsizeiptr>(caches.size() * sizeof(shared::GpuLightCache)),
                            caches.data());
     gl::Buffer proxyBuffer("guard proxies", static_cast<GLsizeiptr>(proxies.size() * sizeof(shared::ProxyLight)),
                            proxies.data());
-    gl::Buffer cellBuffer("guard cells", static_cast<GLsizeiptr>(cellStart.size() * sizeof(std::uint32_t)),
-                          cellStart.data());
-    gl::Buffer indexBuffer("guard indices", static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
-                           indices.data());
+    gl::Buffer cellBuffer("guard cells", static_cast<GLsizeiptr>(set.grid.slots.size() * sizeof(glm::uvec4)),
+                          set.grid.slots.data());
+    gl::Buffer indexBuffer("guard indices", static_cast<GLsizeiptr>(2 * sizeof(std::uint32_t)),
+                           set.grid.cacheIndices.data());
     const CameraFrame frame(glm::vec3(0.0f, 3.0f, 3.0f));
     bindStorageBuffer(shared::kBindingLightCaches, cacheBuffer);
     bindStorageBuffer(shared::kBindingProxyLights, proxyBuffer);
@@ -228,9 +237,10 @@ TEST_CASE("lightskin: a pixel skips a cache whose proxy is not finite and keeps 
     bindStorageBuffer(shared::kBindingLightCacheIndices, indexBuffer);
     FullscreenPass shading(test::shaders(), "LightSkin interpolation", "passes/lightskin_shading.frag");
     const gl::Program& program = shading.program();
-    program.set("uGridOrigin", glm::vec3(-1.0f));
-    program.set("uGridCellSize", 2.0f);
-    glProgramUniform3i(program.id(), program.uniformLocation("uGridDims"), 1, 1, 1);
+    program.set("uGridOrigin", set.grid.origin);
+    program.set("uGridCellSize", set.grid.cellSize);
+    glProgramUniform1ui(program.id(), program.uniformLocation("uGridSlotMask"), set.grid.slotMask);
+    program.set("uGridMaxProbe", set.grid.maxProbe);
     program.set("uExponent", 1.0f);
     gl::RenderTarget target("guard radiance", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"}));
     target.resize(size, size);

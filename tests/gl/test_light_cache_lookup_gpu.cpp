@@ -52,8 +52,8 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
     for (int i = 0; i < 3; ++i)
         words[static_cast<std::size_t>(i)] = bitsOf(set.grid.origin[i]);
     words[3] = bitsOf(set.grid.cellSize);
-    for (int i = 0; i < 3; ++i)
-        words[static_cast<std::size_t>(4 + i)] = static_cast<std::uint32_t>(set.grid.dims[i]);
+    words[4] = set.grid.slotMask;
+    words[5] = static_cast<std::uint32_t>(set.grid.maxProbe);
     words[7] = static_cast<std::uint32_t>(k);
     words[8] = static_cast<std::uint32_t>(words.size());
     for (const LightCache& c : set.caches) {
@@ -61,7 +61,8 @@ TEST_CASE("the light cache lookup gives the same caches in GLSL and C++", "[gl][
         pushVec3(words, c.normal);
     }
     words[9] = static_cast<std::uint32_t>(words.size());
-    words.insert(words.end(), set.grid.cellStart.begin(), set.grid.cellStart.end());
+    for (const glm::uvec4& s : set.grid.slots)
+        words.insert(words.end(), {s.x, s.y, s.z, s.w});
     words[10] = static_cast<std::uint32_t>(words.size());
     words.insert(words.end(), set.grid.cacheIndices.begin(), set.grid.cacheIndices.end());
     words[11] = static_cast<std::uint32_t>(words.size());

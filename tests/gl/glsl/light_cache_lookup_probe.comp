@@ -3,9 +3,9 @@
 // (tests/gl/test_light_cache_lookup_gpu.cpp compares with the same function compiled as C++).
 // One word buffer holds everything (runComputeProbe binds one input), laid out by the test:
 //   words[0..3]   grid origin xyz, cell size (float bits)
-//   words[4..7]   grid dims xyz, k
+//   words[4..7]   the hash table's slot mask, its max probe, unused, k
 //   words[8..12]  offsets (in words) of: caches (8 words each: position xyz, pad, normal xyz, pad),
-//                 cellStart, cacheIndices, queries (8 words each: x xyz, pad, n xyz, pad), reach records
+//                 slots (4 words each), cacheIndices, queries (8 words each: x xyz, pad, n xyz, pad), reach records
 //                 (4 words per cache; offset 0: no reach test)
 layout(local_size_x = 64) in;
 
@@ -16,7 +16,11 @@ uniform int uCount;
 float wordFloat(int i) { return uintBitsToFloat(words[i]); }
 vec3 wordVec3(int i) { return vec3(wordFloat(i), wordFloat(i + 1), wordFloat(i + 2)); }
 
-uint lightCacheCellStart(int cell) { return words[int(words[9]) + cell]; }
+uvec4 lightCacheSlot(int slot)
+{
+    int at = int(words[9]) + 4 * slot;
+    return uvec4(words[at], words[at + 1], words[at + 2], words[at + 3]);
+}
 uint lightCacheIndex(int i) { return words[int(words[10]) + i]; }
 vec3 lightCachePosition(int cache) { return wordVec3(int(words[8]) + 8 * cache); }
 vec3 lightCacheNormal(int cache) { return wordVec3(int(words[8]) + 8 * cache + 4); }
@@ -36,8 +40,8 @@ void main()
     if (q >= uCount) return;
     int query = int(words[11]) + 8 * q;
     LightCacheNeighbours found;
-    findNearestLightCaches(wordVec3(0), wordFloat(3), ivec3(words[4], words[5], words[6]), wordVec3(query),
-                           wordVec3(query + 4), int(words[7]), words[12] != 0u, found);
+    findNearestLightCaches(wordVec3(0), wordFloat(3), words[4], int(words[5]), wordVec3(query), wordVec3(query + 4),
+                           int(words[7]), words[12] != 0u, found);
     int base = q * kResultsPerCase;
     results[base] = vec4(float(found.count), 0.0f, 0.0f, 0.0f);
     for (int i = 0; i < 4; ++i) {
