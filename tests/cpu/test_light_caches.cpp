@@ -424,8 +424,8 @@ TEST_CASE("light caches: the shared lookup finds the k nearest facing caches as 
     }
     compare(xs, ns, 16);
 
-    // Cells of 2 mm: about 1e10 cells over the box, as many as caches occupied (a dense grid had to be
-    // capped at 4M cells and widened them); the radius stays what was asked.
+    // Cells of 2 mm: about 2e7 cells over the 0.55 m box, five times the 4M cells the former dense grid
+    // was capped at (it widened its cells, and the radius with them); the radius stays what was asked.
     buildLightCacheGrid(set, 2e-3f);
     CHECK(set.grid.cellSize == 2e-3f);
     CHECK(set.grid.slots.size() <= 4 * set.caches.size());
