@@ -8,6 +8,7 @@
 #include "core/util/params.h"
 #include "glsl/shared/bindings.h"
 #include "glsl/shared/importance.h"
+#include "glsl/shared/lightskin.h"
 #include "glsl/shared/lightskin_gpu.h"
 #include "glsl/shared/normals.h"
 #include "glsl/shared/rsm.h"
@@ -62,6 +63,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     v.field("lightskin.reach", reach,
             "a cache lights only points within its reach, traced with Embree when the caches are made: not "
             "behind a wall, above a ceiling or behind its own surface (not in the paper; light_cache_lookup.h)");
+    v.field("lightskin.viewCulling", viewCulling,
+            "proxies and occlusion only for the caches a pixel can use, those whose d_eps ball meets the view "
+            "frustum (not in the paper; the image is bit-identical without it)");
     v.field("lightskin.occlusion", occlusion, "indirect occlusion by double projection (section 3)");
     v.field("lightskin.occlusionCells", occlusionCells,
             "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
@@ -167,6 +171,11 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     const int size = mRSM->size(); // rsm.size within the GL limits
     mShaded.resize(frame.width, frame.height);
     mVALsPerCache = 0;
+    // What the passes' view culling keeps (the same test, counted here for the stats).
+    mCachesInView = 0;
+    for (const LightCache& c : mCaches.caches)
+        mCachesInView += !mParams.viewCulling ||
+                         shared::lightCacheInView(frame.clipFromWorld, c.position, mCaches.grid.cellSize);
     if (layers == 0 || cacheCount == 0) {
         // No spot, point or directional light (or no surface): no one-bounce light from RSMs.
         mShaded.clear();
@@ -285,6 +294,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         proxy.set("uFluxWeights", mParams.fluxWeights ? 1 : 0);
         proxy.set("uExactArea", mParams.exactArea ? 1 : 0);
         proxy.set("uChunks", chunks);
+        proxy.set("uViewCulling", mParams.viewCulling ? 1 : 0);
+        proxy.set("uCullRadius", mCaches.grid.cellSize);
         // lightskin-full's pass can take minutes (every texel for every cache): chunk by chunk with
         // progress when it is that large (caches x VALs above 1e9), in one dispatch otherwise.
         const bool showProgress = mFull && static_cast<double>(cacheCount) * valCount > 1e9 && mProgress;
@@ -311,6 +322,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         mFinalizePass.program().set("uCacheCount", cacheCount);
         mFinalizePass.program().set("uChunks", chunks);
         mFinalizePass.program().set("uOcclusionCells", mParams.occlusionCells ? 1 : 0);
+        mFinalizePass.program().set("uViewCulling", mParams.viewCulling ? 1 : 0);
+        mFinalizePass.program().set("uCullRadius", mCaches.grid.cellSize);
         mFinalizePass.dispatch(cacheCount, 1, NextRead::StorageBuffer);
     }
     if (mParams.tracedOcclusion) {
@@ -320,6 +333,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         gl::PassTimer::Scope scope(frame.timer, "occlusion");
         mOcclusionPass.program().set("uCacheCount", cacheCount);
         mOcclusionPass.program().set("uOccluderLight", mParams.occluderLight ? 1 : 0);
+        mOcclusionPass.program().set("uViewCulling", mParams.viewCulling ? 1 : 0);
+        mOcclusionPass.program().set("uCullRadius", mCaches.grid.cellSize);
         mOcclusionPass.dispatch(perCacheInvocations(cacheCount), NextRead::StorageBuffer);
     }
     {
@@ -420,6 +435,7 @@ void LightSkinTechnique::drawCacheView(const FrameContext& frame)
 std::vector<std::pair<std::string, double>> LightSkinTechnique::frameStats() const
 {
     return {{"caches", static_cast<double>(mCaches.caches.size())},
+            {"caches in view", static_cast<double>(mCachesInView)},
             {"vals", static_cast<double>(mVALsPerCache)},
             {"rsm layers", static_cast<double>(mRSM ? mRSM->layerCount() : 0)}};
 }

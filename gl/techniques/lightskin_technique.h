@@ -79,6 +79,7 @@ struct LightSkinParams {
     float interpolationExponent = 1.0f; // p of eq. (8) (the paper gives none; MATH.md 9.5)
     bool fixedRadius = true;      // eq. (8)'s d_max = the search radius d_eps (not in the paper: the farthest cache)
     bool reach = true;            // each cache's traced reach limits the points it lights (not in the paper)
+    bool viewCulling = true;      // proxies only for caches whose d_eps ball meets the frustum (not in the paper)
     bool occlusion = true;        // double projection (section 3)
     bool tracedOcclusion = false; // visibility per cache by Embree rays (the reference; not in the paper)
     bool occlusionCells = true;   // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
@@ -156,6 +157,7 @@ private:
     gl::RenderTarget mCacheView;  // the caches as points (debug view)
     gl::RenderTarget mShaded;
     long long mVALsPerCache = 0;
+    long long mCachesInView = 0; // caches whose proxies the last frame made (lightskin.viewCulling)
     float mImportanceRange = 1.0f; // of the importance view: 20x the mean texel importance
 };
 

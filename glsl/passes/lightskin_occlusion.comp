@@ -14,6 +14,7 @@
 #include "../shared/bindings.h"
 #include "../shared/lightskin.h"
 #include "../shared/lightskin_gpu.h"
+#include "../lib/frame.glsl"
 
 layout(local_size_x = kLightSkinGroupSize) in;
 
@@ -24,6 +25,8 @@ layout(std430, binding = kBindingCacheRadiance) readonly buffer Radiance { float
 
 uniform int uCacheCount;
 uniform int uOccluderLight; // 1: an occluder's own reflected light is not removed (lightskin.occluderLight)
+uniform int uViewCulling;   // 1: no occlusion for a cache no pixel can use (it still occludes the others)
+uniform float uCullRadius;  // the lookup's search radius d_eps [m]
 
 shared float sOverlap[kOcclusionCells][kLightSkinGroupSize];
 
@@ -35,6 +38,7 @@ void main()
     GpuLightCache c = caches[cache];
     vec3 cp = c.positionArea.xyz;
     vec3 cn = c.normalRoughness.xyz;
+    if (uViewCulling != 0 && !lightCacheInView(frame.clipFromWorld, cp, uCullRadius)) return; // the whole group
     mat3 diskFrame = occlusionFrame(cn);
     // What occluders are tested against: one target per occlusion cell, or the two proxies'
     // spheres (the paper's); lightskin_proxy_finalize.comp writes them.

@@ -48,6 +48,8 @@ uniform int uChunks;         // chunks in all
 uniform float uEpsilon;      // epsilon_p of eq. (6)
 uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too (MATH.md 9.3 option)
 uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
+uniform int uViewCulling;    // 1: no sums for a cache no pixel can use (lightskin.h, lightCacheInView)
+uniform float uCullRadius;   // the lookup's search radius d_eps [m]
 
 #include "../lib/lightskin_val.glsl"
 
@@ -58,6 +60,8 @@ void main()
 {
     int cache = int(gl_WorkGroupID.y) + int(gl_WorkGroupID.z) * kLightSkinGroupRows;
     if (cache >= uCacheCount) return; // the whole group: no barrier is skipped by part of it
+    if (uViewCulling != 0 && !lightCacheInView(frame.clipFromWorld, caches[cache].positionArea.xyz, uCullRadius))
+        return; // the whole group too; the finalize pass does not read its sums
     uint lane = gl_LocalInvocationID.x;
     GpuLightCache c = caches[cache];
     vec3 cp = c.positionArea.xyz;

@@ -34,6 +34,8 @@ uniform int uOcclusionCells; // 1: a target per occlusion cell; 0: the paper's, 
 uniform int uOwnRadiance;    // 1: the occlusion pass reads each cache's own radiance (lightskin.occluderLight)
 uniform int uLayers;         // RSM layers
 uniform int uSize;           // RSM edge [texels]
+uniform int uViewCulling;    // 1: a cache no pixel can use gets no light (its sums were not made)
+uniform float uCullRadius;   // the lookup's search radius d_eps [m]
 
 // The light the cache's own surface reflects, as luminance of its radiance [W/(m^2 sr)] (not in the
 // paper; lightskin_occlusion.comp's occluder light): the cache projected into each RSM layer; where
@@ -65,7 +67,8 @@ void main()
     // The sums in the order lightskin_proxy.comp wrote them (lightskin_gpu.h).
     float s[kProxySumCount];
     for (int i = 0; i < kProxySumCount; ++i) s[i] = 0.0;
-    for (int chunk = 0; chunk < uChunks; ++chunk) {
+    bool used = uViewCulling == 0 || lightCacheInView(frame.clipFromWorld, caches[cache].positionArea.xyz, uCullRadius);
+    for (int chunk = 0; used && chunk < uChunks; ++chunk) {
         int at = (cache * uChunks + chunk) * kProxySumVec4s;
         for (int v = 0; v < kProxySumVec4s; ++v) {
             vec4 four = partialSums[at + v];

@@ -452,6 +452,36 @@ VPLGI_FUNC float occlusionFromOverlap(float overlapSum, float proxyProjectedArea
     return min(overlapSum / proxyProjectedArea, 1.0f);
 }
 
+// --- View culling (ours, not in the paper; issue "LightSkin's indirect shadows", part 4) -------------
+// A pixel interpolates only caches closer than the search radius d_eps to its surface point
+// (glsl/shared/light_cache_lookup.h), and that point lies in the camera's frustum; so a cache whose
+// ball of radius d_eps misses the frustum serves no pixel, and its proxies (the proxy pass, the
+// heaviest: every VAL for every cache) and its occlusion need not be made. It stays an occluder of
+// the others. The frustum's six planes from clipFromWorld's rows (w +- x, w +- y, w +- z: clip
+// space's -w <= x, y, z <= w), each normalised; the ball is kept when no plane has it wholly
+// outside. kLightCacheCullMargin widens the ball: a surface point within a rounding of a plane must
+// not cull its cache (the exact test is images bit-identical with and without culling).
+VPLGI_CONST float kLightCacheCullMargin = 1.01f;
+VPLGI_FUNC bool lightCacheInView(mat4 clipFromWorld, vec3 position, float radius)
+{
+    vec4 rowX = vec4(clipFromWorld[0][0], clipFromWorld[1][0], clipFromWorld[2][0], clipFromWorld[3][0]);
+    vec4 rowY = vec4(clipFromWorld[0][1], clipFromWorld[1][1], clipFromWorld[2][1], clipFromWorld[3][1]);
+    vec4 rowZ = vec4(clipFromWorld[0][2], clipFromWorld[1][2], clipFromWorld[2][2], clipFromWorld[3][2]);
+    vec4 rowW = vec4(clipFromWorld[0][3], clipFromWorld[1][3], clipFromWorld[2][3], clipFromWorld[3][3]);
+    vec4 p = vec4(position, 1.0f);
+    float r = kLightCacheCullMargin * radius;
+    bool inside = true;
+    for (int i = 0; i < 6; ++i) {
+        vec4 axis = i < 2 ? rowX : (i < 4 ? rowY : rowZ);
+        vec4 plane = (i % 2 == 0) ? rowW + axis : rowW - axis;
+        float length2 = dot(vec3(plane), vec3(plane));
+        // Outside: the signed distance below -r, i.e. dot(plane, p) < -r |plane.xyz|.
+        float distance = dot(plane, p);
+        if (length2 > 0.0f && distance < 0.0f && distance * distance > r * r * length2) inside = false;
+    }
+    return inside;
+}
+
 VPLGI_SHARED_END
 
 #endif // VPLGI_SHARED_LIGHTSKIN_H

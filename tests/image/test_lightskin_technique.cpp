@@ -168,6 +168,41 @@ TEST_CASE("lightskin and lightskin-full images are bit-identical over runs", "[l
                                          24);
 }
 
+TEST_CASE("lightskin: view culling makes proxies only for caches in view and changes no bit", "[lightskin][image]")
+{
+    // A narrow camera on the corner's joint: most caches lie outside its frustum (by more than d_eps).
+    // Culled caches' proxies are never interpolated (lightskin.h, lightCacheInView), so the image is
+    // the same bits with and without culling; the stats count what the passes kept.
+    test::ensureGLContext();
+    const Scene scene = test::cornerScene(1.0f, 0.3f);
+    Camera camera = scene.cameras[0];
+    camera.target = glm::vec3(-1.0f, 0.3f, 0.2f);
+    camera.fovY = 0.2f;
+    for (const std::string technique : {"lightskin", "lightskin-full"}) {
+        INFO(technique);
+        std::vector<ImageRGBA32F> images;
+        std::vector<double> inView, caches;
+        for (const char* culling : {"true", "false"}) {
+            std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
+                scene, technique,
+                {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.3"}, {"lightskin.viewCulling", culling}});
+            images.push_back(test::renderIndirect(*renderer, camera, 32, 24));
+            for (const auto& [key, value] : renderer->technique().frameStats()) {
+                if (key == "caches in view") inView.push_back(value);
+                if (key == "caches") caches.push_back(value);
+            }
+        }
+        REQUIRE(inView.size() == 2u);
+        REQUIRE(caches.size() == 2u);
+        INFO("caches " << caches[0] << ", in view " << inView[0]);
+        CHECK(inView[0] > 0.0);
+        CHECK(inView[0] < 0.5 * caches[0]); // the culling acts
+        CHECK(inView[1] == caches[1]);      // without it, every cache
+        CHECK(meanLuminance(images[0]) > 0.0);
+        CHECK(test::firstBitDifference(images[0].pixels, images[1].pixels) == -1);
+    }
+}
+
 TEST_CASE("lightskin: a scene without an RSM light renders no indirect light", "[lightskin][image]")
 {
     test::ensureGLContext();
