@@ -11,13 +11,15 @@
 namespace vplgi {
 
 std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<LightCache>& caches,
-                                        const std::vector<TracedVAL>& vals, int samples, std::uint32_t seed)
+                                        const std::vector<TracedVAL>& vals, int samples, std::uint32_t seed,
+                                        const std::vector<std::uint8_t>& wanted)
 {
     std::vector<float> visibility(caches.size(), 1.0f);
     const float lift = 1e-4f * rays.sceneScale();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, caches.size(), 16), [&](const auto& range) {
         std::vector<double> cumulative(vals.size());
         for (std::size_t c = range.begin(); c != range.end(); ++c) {
+            if (!wanted.empty() && wanted[c] == 0) continue;
             const LightCache& cache = caches[c];
             double total = 0.0;
             for (std::size_t l = 0; l < vals.size(); ++l) {

@@ -29,9 +29,11 @@ struct TracedVAL {
 // glsl/shared/lightskin.h valGeometryTerm) and V the visibility of the segment between them (both
 // ends lifted off their surfaces by 1e-4 of the scene's diagonal), estimated from `samples` VALs
 // drawn in proportion to c_l (a Monte Carlo standard error of at most 0.5/sqrt(samples)). 1 for a
-// cache no VAL lights. Deterministic: the draws are keyed by (seed, cache), not by threads.
+// cache no VAL lights. Deterministic: the draws are keyed by (seed, cache), not by threads. With
+// `wanted` (one flag per cache; empty: every cache), a cache flagged 0 is not traced and gets 1.
 std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<LightCache>& caches,
-                                        const std::vector<TracedVAL>& vals, int samples, std::uint32_t seed);
+                                        const std::vector<TracedVAL>& vals, int samples, std::uint32_t seed,
+                                        const std::vector<std::uint8_t>& wanted = {});
 
 // Each cache's reach record (glsl/shared/light_cache_lookup.h, lightCacheReaches) for the search
 // radius `radius`: 16 rays per cache from kLightCacheReachLift radius above it, along

@@ -172,10 +172,10 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     mShaded.resize(frame.width, frame.height);
     mVALsPerCache = 0;
     // What the passes' view culling keeps (the same test, counted here for the stats).
-    mCachesInView = 0;
-    for (const LightCache& c : mCaches.caches)
-        mCachesInView += !mParams.viewCulling ||
-                         shared::lightCacheInView(frame.clipFromWorld, c.position, mCaches.grid.cellSize);
+    mInView.assign(mCaches.caches.size(), 1);
+    for (std::size_t i = 0; i < mInView.size() && mParams.viewCulling; ++i)
+        mInView[i] = shared::lightCacheInView(frame.clipFromWorld, mCaches.caches[i].position, mCaches.grid.cellSize);
+    mCachesInView = std::count(mInView.begin(), mInView.end(), std::uint8_t(1));
     if (layers == 0 || cacheCount == 0) {
         // No spot, point or directional light (or no surface): no one-bounce light from RSMs.
         mShaded.clear();
@@ -403,7 +403,7 @@ void LightSkinTechnique::traceOcclusion(int size, int layers)
         val.power = shared::luminanceRec709(reflected);
         vals.push_back(val);
     }
-    const std::vector<float> visibility = traceCacheVisibility(mRays->get(), mCaches.caches, vals, 256, mParams.seed);
+    const std::vector<float> visibility = traceCacheVisibility(mRays->get(), mCaches.caches, vals, 256, mParams.seed, mInView);
     std::vector<shared::ProxyLight> proxies(mCaches.caches.size());
     const auto bytes = static_cast<GLsizeiptr>(proxies.size() * sizeof(shared::ProxyLight));
     glGetNamedBufferSubData(mProxies.id(), 0, bytes, proxies.data());

@@ -58,6 +58,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "../api/render_target.h"
 #include "../passes/compute_pass.h"
@@ -157,7 +158,8 @@ private:
     gl::RenderTarget mCacheView;  // the caches as points (debug view)
     gl::RenderTarget mShaded;
     long long mVALsPerCache = 0;
-    long long mCachesInView = 0; // caches whose proxies the last frame made (lightskin.viewCulling)
+    long long mCachesInView = 0;       // caches whose proxies the last frame made (lightskin.viewCulling)
+    std::vector<std::uint8_t> mInView; // per cache: 1 when the view culling keeps it (the traced occlusion's too)
     float mImportanceRange = 1.0f; // of the importance view: 20x the mean texel importance
 };
 

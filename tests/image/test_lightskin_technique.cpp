@@ -178,14 +178,20 @@ TEST_CASE("lightskin: view culling makes proxies only for caches in view and cha
     Camera camera = scene.cameras[0];
     camera.target = glm::vec3(-1.0f, 0.3f, 0.2f);
     camera.fovY = 0.2f;
-    for (const std::string technique : {"lightskin", "lightskin-full"}) {
-        INFO(technique);
+    // lightskin with the traced occlusion too: it traces only the caches in view.
+    for (const auto& [technique, traced] : {std::pair<std::string, const char*>{"lightskin", "false"},
+                                            {"lightskin-full", "false"},
+                                            {"lightskin", "true"}}) {
+        INFO(technique << ", traced occlusion " << traced);
         std::vector<ImageRGBA32F> images;
         std::vector<double> inView, caches;
         for (const char* culling : {"true", "false"}) {
             std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(
                 scene, technique,
-                {{"rsm.size", "32"}, {"lightskin.cacheDistance", "0.3"}, {"lightskin.viewCulling", culling}});
+                {{"rsm.size", "32"},
+                 {"lightskin.cacheDistance", "0.3"},
+                 {"lightskin.viewCulling", culling},
+                 {"lightskin.tracedOcclusion", traced}});
             images.push_back(test::renderIndirect(*renderer, camera, 32, 24));
             for (const auto& [key, value] : renderer->technique().frameStats()) {
                 if (key == "caches in view") inView.push_back(value);
