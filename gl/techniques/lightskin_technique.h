@@ -113,6 +113,7 @@ public:
 
     // For tests.
     const LightCacheSet& caches() const { return mCaches; }
+    const std::vector<std::uint8_t>& cachesInView() const { return mInView; } // the last frame's view culling
     const gl::Buffer& proxies() const { return mProxies; }
     const gl::Texture& importance() const { return mImportance; }
     const ImportanceSampler& sampler() const { return *mSampler; }
