@@ -25,6 +25,7 @@
 // --shard i/n runs the cells whose index (scenes outer, techniques inner) is i-1 modulo n;
 // --merge DIR,... joins the conform.json of earlier runs into one report (no rendering).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -170,6 +171,9 @@ struct Cell {
     // (the largest over the seeds); -1 for other scenes.
     double sealedLeak = -1.0;
     std::string images; // "images/<cell>" prefix, empty when merged without images
+    // Wall time of the cell [s]: its seeds' renders and any reference it rendered first (the cache
+    // serves later cells); for sizing a matrix (scripts/conformance-matrix). -1: not recorded.
+    double seconds = -1.0;
 };
 
 Json toJson(const Cell& c)
@@ -189,7 +193,8 @@ Json toJson(const Cell& c)
                 {"truthMeanLuminance", c.truthMean},
                 {"techniqueMeanLuminance", c.techniqueMean},
                 {"sealedLeak", c.sealedLeak >= 0.0 ? Json(c.sealedLeak) : Json()},
-                {"images", c.images}};
+                {"images", c.images},
+                {"seconds", c.seconds >= 0.0 ? Json(c.seconds) : Json()}};
 }
 
 Cell cellFromJson(const Json& j, const std::string& dir)
@@ -210,6 +215,8 @@ Cell cellFromJson(const Json& j, const std::string& dir)
     c.truthMean = j.at("truthMeanLuminance").get<double>();
     c.techniqueMean = j.at("techniqueMeanLuminance").get<double>();
     c.sealedLeak = j.at("sealedLeak").is_null() ? -1.0 : j.at("sealedLeak").get<double>();
+    // Optional: reports written before it existed have none.
+    c.seconds = j.contains("seconds") && !j.at("seconds").is_null() ? j.at("seconds").get<double>() : -1.0;
     const std::string images = j.at("images").get<std::string>();
     c.images = images.empty() ? "" : dir + "/" + images;
     return c;
@@ -286,6 +293,7 @@ bool hasLight(const Scene& scene)
 Cell runCell(const ConformOptions& o, const std::string& sceneSpec,
             const std::shared_ptr<const SceneDescription>& scene, const std::string& technique, int cellIndex)
 {
+    const auto start = std::chrono::steady_clock::now();
     Cell cell;
     cell.scene = sceneSpec;
     cell.technique = technique;
@@ -368,6 +376,8 @@ Cell runCell(const ConformOptions& o, const std::string& sceneSpec,
     cell.p999 = meanInterval(p999);
     cell.drift = meanInterval(drift);
     if (sealed) cell.sealedLeak = litMean > 0.0 ? closedMax / litMean : (closedMax > 0.0 ? 1e30 : 0.0);
+    cell.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "conform: %s / %s took %.1f s\n", sceneSpec.c_str(), technique.c_str(), cell.seconds);
     return cell;
 }
 

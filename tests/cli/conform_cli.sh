@@ -21,12 +21,13 @@ a, s1, s2, m = (json.load(open(p))["cells"] for p in sys.argv[1:])
 key = lambda c: (c["scene"], c["technique"])
 assert [key(c) for c in s1] == [("furnace", "vpl-brsm"), ("glossy", "vpl-brsm")], [key(c) for c in s1]
 assert [key(c) for c in s2] == [("furnace", "ir"), ("glossy", "ir")], [key(c) for c in s2]
-drop = lambda c: {k: v for k, v in c.items() if k != "images"}
+drop = lambda c: {k: v for k, v in c.items() if k not in ("images", "seconds")}  # wall times differ by run
 assert sorted(map(drop, m), key=key) == sorted(map(drop, a), key=key), "merged shards differ from the full run"
 for c in a:
     assert c["seeds"] == 2 and c["biasMatched"]["count"] == 2 and c["biasMatched"]["halfWidth95"] > 0, c
     assert c["matchedMeanLuminance"] > 0 and c["techniqueMeanLuminance"] > 0, c
     assert c["drift"] is None, c  # one frame: no drift
+    assert c["seconds"] > 0, c  # the cell's wall time, for sizing a matrix
 PY
 grep -q 'images/cell0-matched.png' "$work/all/index.html"
 echo "conform: shards merge into the full run's cells; report complete"
