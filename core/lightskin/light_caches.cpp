@@ -760,10 +760,12 @@ void buildLightCacheGrid(LightCacheSet& set, float cellSize)
     // Each cache's cell, by the same expression as glsl/shared/light_cache_lookup.h (>= 0: the origin
     // is the lower corner), keyed; sorted by (key, index), so each cell's caches are in index order.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(set.caches.size());
+    std::vector<glm::ivec3> cellOf(set.caches.size()); // by cache index, for the hash below
     for (std::size_t i = 0; i < set.caches.size(); ++i) {
         const glm::ivec3 cell =
             glm::clamp(glm::ivec3(glm::floor((set.caches[i].position - grid.origin) / grid.cellSize)), glm::ivec3(0),
                        glm::ivec3(shared::kLightCacheCellAxisLimit - 1));
+        cellOf[i] = cell;
         const glm::uvec2 key = shared::lightCacheCellKey(cell);
         keyed[i] = {(static_cast<std::uint64_t>(key.y) << 32u) | key.x, static_cast<std::uint32_t>(i)};
     }
@@ -781,9 +783,7 @@ void buildLightCacheGrid(LightCacheSet& set, float cellSize)
         std::size_t last = first + 1;
         while (last < keyed.size() && keyed[last].first == keyed[first].first) ++last;
         const std::uint64_t key = keyed[first].first;
-        const glm::ivec3 cell(static_cast<int>(key & 0x1fffffu), static_cast<int>((key >> 21u) & 0x1fffffu),
-                              static_cast<int>(key >> 42u));
-        std::uint32_t slot = shared::lightCacheCellHash(cell) & grid.slotMask;
+        std::uint32_t slot = shared::lightCacheCellHash(cellOf[keyed[first].second]) & grid.slotMask;
         int probe = 0;
         while (grid.slots[slot].y != shared::kLightCacheEmptySlot) {
             slot = (slot + 1u) & grid.slotMask;
