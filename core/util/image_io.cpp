@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <memory>
+#include <mutex>
 #include <random>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
 #include "core/util/error.h"
+#include "core/util/image_codec.h"
 
 namespace vplgi {
 
@@ -52,7 +52,53 @@ bool writeBytes(const fs::path& file, const std::vector<unsigned char>& bytes, s
     return ok;
 }
 
-void writeAtomically(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* pixels)
+// The OpenImageIO codec module (core/util/image_codec.h says why it is loaded on first use): first
+// beside the running executable (a copied binary takes its module along), then where the build put it.
+const VplgiImageCodec& codec()
+{
+    static std::once_flag once;
+    static const VplgiImageCodec* loaded = nullptr;
+    static std::string failure;
+    std::call_once(once, [] {
+        const std::string name = "libvplgi_image_oiio.so";
+        std::vector<std::string> candidates;
+        std::error_code ec;
+        const fs::path executable = fs::read_symlink("/proc/self/exe", ec);
+        if (!ec) candidates.push_back((executable.parent_path() / name).string());
+        candidates.push_back(VPLGI_IMAGE_MODULE);
+        std::string reasons;
+        for (const std::string& candidate : candidates) {
+            if (!fs::exists(candidate, ec)) continue;
+            void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+            if (handle == nullptr) {
+                const char* why = dlerror();
+                reasons += "; " + candidate + ": " + (why != nullptr ? why : "dlopen failed");
+                continue;
+            }
+            auto entry = reinterpret_cast<VplgiImageCodecEntry>(dlsym(handle, "vplgi_image_codec"));
+            const VplgiImageCodec* found = entry != nullptr ? entry() : nullptr;
+            if (found == nullptr || found->version != kVplgiImageCodecVersion) {
+                reasons += "; " + candidate + ": not this build's module";
+                continue;
+            }
+            loaded = found;
+            return;
+        }
+        failure = "cannot load the image module " + name + " (beside the executable or at " + VPLGI_IMAGE_MODULE +
+                  ")" + (reasons.empty() ? ": not found" : reasons);
+    });
+    if (loaded == nullptr) throw Error(failure);
+    return *loaded;
+}
+
+void appendBytes(void* context, const void* bytes, std::size_t size)
+{
+    auto* encoded = static_cast<std::vector<unsigned char>*>(context);
+    const auto* begin = static_cast<const unsigned char*>(bytes);
+    encoded->insert(encoded->end(), begin, begin + size);
+}
+
+void writeAtomically(const std::string& path, int width, int height, bool floatPixels, const void* pixels)
 {
     checkOutputPath(path);
     fs::path target(path);
@@ -62,16 +108,10 @@ void writeAtomically(const std::string& path, int width, int height, OIIO::TypeD
     // does not report failed writes to its file (with a full disk it "succeeds" with a truncated
     // file), so it never touches the file itself.
     std::vector<unsigned char> encoded;
-    {
-        OIIO::Filesystem::IOVecOutput proxy(encoded);
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.filename().string());
-        require(out != nullptr && out->supports("ioproxy"), path + ": cannot write this format");
-        OIIO::ImageSpec spec(width, height, 4, type);
-        if (type == OIIO::TypeDesc::FLOAT) spec.attribute("compression", "zip");
-        bool ok = out->set_ioproxy(&proxy) && out->open(target.filename().string(), spec) &&
-                  out->write_image(type, pixels) && out->close();
-        if (!ok) throw Error(path + ": write failed: " + out->geterror());
-    }
+    char error[512] = {};
+    if (codec().encode(target.filename().c_str(), width, height, floatPixels ? 1 : 0, pixels, &appendBytes, &encoded,
+                       error, sizeof error) == 0)
+        throw Error(path + ": " + error);
     fs::path temporary = temporarySibling(directory / target.filename());
     std::string message;
     std::error_code ec;
@@ -86,30 +126,24 @@ void writeAtomically(const std::string& path, int width, int height, OIIO::TypeD
     }
 }
 
-std::unique_ptr<OIIO::ImageInput> openInput(const std::string& path)
+// Reads `path` as RGBA into `image` (ImageRGBA32F or ImageRGBA8).
+template <typename Image>
+Image readRGBA(const std::string& path, bool floatPixels)
 {
     require(fs::exists(path), path + ": no such file");
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-    require(in != nullptr, path + ": cannot read image: " + OIIO::geterror());
-    return in;
-}
-
-template <typename T>
-std::vector<T> readRGBA(OIIO::ImageInput& in, const std::string& path, OIIO::TypeDesc type)
-{
-    const OIIO::ImageSpec& spec = in.spec();
-    int channels = spec.nchannels;
-    std::vector<T> raw(static_cast<std::size_t>(spec.width) * spec.height * channels);
-    require(in.read_image(0, 0, 0, channels, type, raw.data()), path + ": read failed: " + in.geterror());
-    std::vector<T> rgba(static_cast<std::size_t>(spec.width) * spec.height * 4);
-    const T opaque = type == OIIO::TypeDesc::FLOAT ? T(1) : T(255);
-    for (std::size_t p = 0; p < static_cast<std::size_t>(spec.width) * spec.height; ++p) {
-        for (int c = 0; c < 4; ++c) {
-            T value = c < channels ? raw[p * channels + c] : (c == 3 ? opaque : raw[p * channels]);
-            rgba[p * 4 + c] = value;
-        }
-    }
-    return rgba;
+    Image image;
+    auto allocate = [](void* context, int width, int height) -> void* {
+        auto* target = static_cast<Image*>(context);
+        if (width <= 0 || height <= 0) return nullptr;
+        target->width = width;
+        target->height = height;
+        target->pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4, 0);
+        return target->pixels.data();
+    };
+    char error[512] = {};
+    if (codec().decode(path.c_str(), floatPixels ? 1 : 0, allocate, &image, error, sizeof error) == 0)
+        throw Error(path + ": " + error);
+    return image;
 }
 
 } // namespace
@@ -144,33 +178,23 @@ void checkWritableDirectory(const std::string& path)
 void writeImage(const std::string& path, const ImageRGBA8& image)
 {
     require(!isFloatImagePath(path), path + ": an 8-bit image cannot be written as a float format");
-    writeAtomically(path, image.width, image.height, OIIO::TypeDesc::UINT8, image.pixels.data());
+    writeAtomically(path, image.width, image.height, false, image.pixels.data());
 }
 
 void writeImage(const std::string& path, const ImageRGBA32F& image)
 {
     require(isFloatImagePath(path), path + ": linear images are written as .exr");
-    writeAtomically(path, image.width, image.height, OIIO::TypeDesc::FLOAT, image.pixels.data());
+    writeAtomically(path, image.width, image.height, true, image.pixels.data());
 }
 
 ImageRGBA32F readImageLinear(const std::string& path)
 {
-    std::unique_ptr<OIIO::ImageInput> in = openInput(path);
-    ImageRGBA32F image;
-    image.width = in->spec().width;
-    image.height = in->spec().height;
-    image.pixels = readRGBA<float>(*in, path, OIIO::TypeDesc::FLOAT);
-    return image;
+    return readRGBA<ImageRGBA32F>(path, true);
 }
 
 ImageRGBA8 readImage8(const std::string& path)
 {
-    std::unique_ptr<OIIO::ImageInput> in = openInput(path);
-    ImageRGBA8 image;
-    image.width = in->spec().width;
-    image.height = in->spec().height;
-    image.pixels = readRGBA<std::uint8_t>(*in, path, OIIO::TypeDesc::UINT8);
-    return image;
+    return readRGBA<ImageRGBA8>(path, false);
 }
 
 } // namespace vplgi

@@ -1,4 +1,5 @@
-// Image files through OpenImageIO. Writes are atomic: a temporary file in the same directory is
+// Image files through OpenImageIO (a module loaded on the first read or write: core/util/image_codec.h).
+// Writes are atomic: a temporary file in the same directory is
 // renamed over the target, so a failed write never leaves a half-written file.
 #pragma once
 
