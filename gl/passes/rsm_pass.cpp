@@ -85,7 +85,8 @@ void RSMPass::reloadShaders(const gl::ShaderLoader& shaders)
     mDownsample.reloadShaders(shaders);
 }
 
-std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet& lights, int areaSources, int size)
+std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet& lights, int areaSources, int size,
+                                        RSMCubeFaces faces)
 {
     const glm::vec3 lower = bounds.empty() ? glm::vec3(0.0f) : bounds.lower;
     const glm::vec3 upper = bounds.empty() ? glm::vec3(0.0f) : bounds.upper;
@@ -103,10 +104,12 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
         return 1.01f * std::max(farthest, diagonal * 1e-3f);
     };
     // The six cube faces around `source`; with `hemisphere`, only those reaching in front of its
-    // axis (a face whose four corner directions all lie behind would hold no flux).
+    // axis (a face whose four corner directions all lie behind would hold no flux). With
+    // RSMCubeFaces::LightBudget the light's faces share size^2 texels.
     auto addCubeFaces = [&](RSMView view, bool hemisphere) {
         const glm::vec3 position(view.source.positionProfile);
         const float zFar = zFarFrom(position);
+        const std::size_t first = views.size();
         for (int face = 0; face < shared::kLightViewCubeFaceCount; ++face) {
             if (hemisphere) {
                 // The face's corner directions are axis +/- u +/- v (u, v the other two unit axes):
@@ -121,6 +124,11 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
             view.clipFromView = shared::lightViewCubeFaceClipFromView(1e-4f * zFar, zFar);
             views.push_back(view);
         }
+        const double count = static_cast<double>(views.size() - first);
+        const int faceSize = faces == RSMCubeFaces::LightBudget && count > 0.0
+                                 ? std::max(1, static_cast<int>(std::floor(size / std::sqrt(count))))
+                                 : size;
+        for (std::size_t v = first; v < views.size(); ++v) views[v].size = faceSize;
     };
     for (std::size_t i = 0; i < lights.points.size(); ++i) {
         const shared::PointEmitter& e = lights.points[i];
@@ -139,6 +147,7 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
         const glm::vec3 axis = glm::normalize(glm::vec3(e.axisCosOuter));
         const float halfAngle = std::min(std::acos(std::clamp(e.axisCosOuter.w, -1.0f, 1.0f)), kRSMMaxSpotHalfAngle);
         view.kind = shared::kRSMLightSpot;
+        view.size = size;
         view.viewFromWorld = shared::lightViewSpotViewFromWorld(position, axis);
         view.clipFromView = shared::lightViewSpotClipFromView(halfAngle, 1e-4f * zFar, zFar);
         views.push_back(view);
@@ -157,6 +166,7 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
         const float radius = 0.5f * diagonal * 1.01f;
         RSMView view;
         view.kind = shared::kRSMLightDirectional;
+        view.size = size;
         view.emitter = static_cast<int>(i);
         view.viewFromWorld =
             shared::lightViewDirectionalViewFromWorld(glm::vec3(lights.directionals[i].direction), center, radius);
@@ -165,15 +175,17 @@ std::vector<RSMView> RSMPass::makeViews(const AABB& bounds, const DirectLightSet
     }
     for (RSMView& view : views) {
         view.clipFromWorld = view.clipFromView * view.viewFromWorld;
-        view.texelFactor = texelFactor(view.clipFromView, size);
+        view.texelFactor = texelFactor(view.clipFromView, view.size);
     }
     return views;
 }
 
 void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params,
-                     gl::PassTimer* timer)
+                     gl::PassTimer* timer, RSMCubeFaces faces)
 {
     require(isPowerOfTwo(params.size), "rsm.size must be a power of two, not " + std::to_string(params.size));
+    require(faces == RSMCubeFaces::FaceEach || mMips == RSMMips::None,
+            "RSM cube faces within one light's budget need an RSM without mips");
     if (params.areaSources == 0 && !mWarnedArea) {
         for (const shared::PointEmitter& e : lights.points)
             if (static_cast<int>(e.positionProfile.w + 0.5f) == shared::kProfileCosine) {
@@ -183,7 +195,7 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
                 break;
             }
     }
-    mViews = makeViews(scene.scene().worldBounds(), lights, params.areaSources, params.size);
+    mViews = makeViews(scene.scene().worldBounds(), lights, params.areaSources, params.size, faces);
     if (mViews.empty()) return;
     // The techniques lay the layers side by side in one texture (the importance maps), so size x
     // layers must fit GL_MAX_TEXTURE_SIZE: the largest power of two that does.
@@ -192,7 +204,7 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
     mSize = gl::clampToLimit(params.size, fit, "rsm.size",
                              "GL_MAX_TEXTURE_SIZE / RSM layers (" + std::to_string(layerCount()) +
                                  " layers side by side in the importance maps)");
-    if (mSize != params.size) mViews = makeViews(scene.scene().worldBounds(), lights, params.areaSources, mSize);
+    if (mSize != params.size) mViews = makeViews(scene.scene().worldBounds(), lights, params.areaSources, mSize, faces);
     std::vector<shared::RSMLayerLight> layerLights;
     for (const RSMView& view : mViews) {
         const glm::vec3 where = view.kind == shared::kRSMLightDirectional
@@ -214,6 +226,7 @@ void RSMPass::render(const GpuScene& scene, const DirectLightSet& lights, const 
         mProgram.set("uClipFromWorld", view.clipFromWorld);
         mProgram.set("uLightKind", view.kind);
         mProgram.set("uTexelFactor", view.texelFactor);
+        glViewport(0, 0, view.size, view.size); // the layer's square (RSMCubeFaces)
         if (view.kind != shared::kRSMLightDirectional) {
             const shared::PointEmitter& e = view.source;
             const glm::vec3 axis = view.kind == shared::kRSMLightSpot ? glm::normalize(glm::vec3(e.axisCosOuter))

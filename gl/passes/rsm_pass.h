@@ -54,7 +54,9 @@
 //  perspective projection, exact for any triangle. The faces also reuse everything the spot path
 //  has (texel solid angle cos^3, the mip reduction per layer, light_view.h's cube faces, the same
 //  as the shadow cubes'). The price: six layers per light instead of two, and the mips stop at
-//  the face seams (a consumer filtering across a seam must look up the neighbouring face).
+//  the face seams (a consumer filtering across a seam must look up the neighbouring face). A
+//  consumer that reads texels one by one can keep the six faces within one light's texels
+//  (RSMCubeFaces::LightBudget, LightSkin).
 //  Emissive triangles (not in any paper: VSGL, LightSkin and the RSM papers light by point, spot
 //  and directional lights): their lights.emitterSamples cosine samples are merged into at most
 //  rsm.areaSources cosine emitters (groupCosineEmitters, core/scene/direct_lights.h), each rendered
@@ -103,6 +105,17 @@ struct RSMParams {
 // The widest spot frustum: cones wider than this lose their rim (the frustum grows as tan).
 constexpr float kRSMMaxSpotHalfAngle = 1.4835299f; // 85 degrees
 
+// How the cube faces of a point light or an emissive source are sized (issue "LightSkin's indirect
+// shadows", part 4).
+//  FaceEach     every face rsm.size^2: a point light takes six times a spot light's texels.
+//  LightBudget  (LightSkin's; not in any paper, whose lights are spots and the sun) the faces of one
+//               light share one rsm.size^2: each is floor(rsm.size / sqrt(faces)) texels wide, drawn
+//               into the corner from texel (0, 0) of its layer (RSMView::size); the rest of the layer
+//               stays cleared (coverage 0, no flux), which every per-texel reader skips as it skips a
+//               texel that sees no surface. Only RSMMips::None: the mips and VSGL's footprints take
+//               whole layers.
+enum class RSMCubeFaces { FaceEach, LightBudget };
+
 // What layer i of the RSM was rendered for.
 struct RSMView {
     int kind = 0;    // shared::kRSMLightSpot / kRSMLightPoint / kRSMLightArea / kRSMLightDirectional
@@ -113,6 +126,7 @@ struct RSMView {
     glm::mat4 clipFromView{1.0f};
     glm::mat4 clipFromWorld{1.0f};
     float texelFactor = 0.0f; // 4/(P00 P11 W H): on-axis texel solid angle [sr] or area [m^2]
+    int size = 0;             // the layer's square in use, from texel (0, 0) [texels]: W = H (RSMCubeFaces)
 };
 
 // A target with the RSM layout above (2D array, full mip chain, depth when `withDepth`): the RSM
@@ -140,10 +154,10 @@ public:
     explicit RSMPass(const gl::ShaderLoader& shaders, RSMMips mips = RSMMips::All);
     void reloadShaders(const gl::ShaderLoader& shaders);
     // Renders every spot, point, area (emissive) and directional light's RSM and, with RSMMips::All,
-    // its mips. Throws Error when params.size is not a power of two. With no such light, nothing is
-    // drawn and layerCount() is 0.
+    // its mips. Throws Error when params.size is not a power of two, or for RSMCubeFaces::LightBudget
+    // with mips. With no such light, nothing is drawn and layerCount() is 0.
     void render(const GpuScene& scene, const DirectLightSet& lights, const RSMParams& params,
-                gl::PassTimer* timer = nullptr);
+                gl::PassTimer* timer = nullptr, RSMCubeFaces faces = RSMCubeFaces::FaceEach);
     // Recomputes levels 1.. from level 0 (render() calls it with RSMMips::All; public for the tests).
     void downsample(gl::PassTimer* timer = nullptr);
 
@@ -162,7 +176,7 @@ public:
 
     // The views render() would use (CPU only; shared with the tests' CPU rasterisation).
     static std::vector<RSMView> makeViews(const AABB& bounds, const DirectLightSet& lights, int areaSources,
-                                          int size);
+                                          int size, RSMCubeFaces faces = RSMCubeFaces::FaceEach);
 
 private:
     SceneProgram mProgram;

@@ -78,6 +78,10 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
             "CPU, not real-time; not in the paper)");
     v.field("lightskin.exactArea", exactArea,
             "VAL area: the texel's tilted footprint (MATH.md 9.1) instead of eq. (1)'s disk across the light's view");
+    v.field("lightskin.cubeFaceBudget", cubeFaceBudget,
+            "the cube faces of a point light (or an emissive source) share one rsm.size^2 RSM, each floor(rsm.size / "
+            "sqrt(faces)) texels wide (not in the paper, whose lights are spots and the sun); false: every face "
+            "rsm.size^2, six times a spot light's VALs");
     caches.visitParams(v);
     rsm.visitParams(v);
 }
@@ -165,7 +169,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     const int cacheCount = static_cast<int>(mCaches.caches.size());
     {
         gl::PassTimer::Scope scope(frame.timer, "RSM");
-        mRSM->render(*mGpuScene, frame.lights, mParams.rsm);
+        mRSM->render(*mGpuScene, frame.lights, mParams.rsm, nullptr,
+                     mParams.cubeFaceBudget ? RSMCubeFaces::LightBudget : RSMCubeFaces::FaceEach);
     }
     const int layers = mRSM->layerCount();
     const int size = mRSM->size(); // rsm.size within the GL limits
@@ -190,7 +195,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         const glm::mat4& m = view.viewFromWorld; // column-major: the view-space z row is m[i][2]
         shared::RSMLayerView record;
         record.depthRow = -glm::vec4(m[0][2], m[1][2], m[2][2], m[3][2]); // the view looks down -z
-        record.info = glm::vec4(view.texelFactor, view.kind == shared::kRSMLightDirectional ? 1.0f : 0.0f, 0.0f, 0.0f);
+        record.info = glm::vec4(view.texelFactor, view.kind == shared::kRSMLightDirectional ? 1.0f : 0.0f,
+                                static_cast<float>(view.size), 0.0f);
         record.clip0 = view.clipFromWorld[0];
         record.clip1 = view.clipFromWorld[1];
         record.clip2 = view.clipFromWorld[2];
@@ -208,7 +214,10 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     bindStorageBuffer(shared::kBindingRSMLayerViews, mLayerViews);
     bindStorageBuffer(shared::kBindingRSMLayers, mRSM->layerLights());
 
-    const int valCount = mFull ? size * size * layers : mParams.valCount;
+    // lightskin-full: every texel of the layers' squares (RSMView::size), laid end to end.
+    int texelsInUse = 0;
+    for (const RSMView& view : mRSM->views()) texelsInUse += view.size * view.size;
+    const int valCount = mFull ? texelsInUse : mParams.valCount;
     if (!mFull) {
         {
             gl::PassTimer::Scope scope(frame.timer, "importance");
@@ -288,6 +297,7 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         proxy.set("uValCount", valCount);
         proxy.set("uSelectionCount", mParams.valCount);
         proxy.set("uSize", size);
+        proxy.set("uLayers", layers);
         proxy.set("uCacheCount", cacheCount);
         proxy.set("uChunkSize", chunkSize);
         proxy.set("uEpsilon", mParams.weightEpsilon);
@@ -318,7 +328,6 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
             mParams.occlusion && !mParams.tracedOcclusion && mParams.occlusionCells && mParams.occluderLight;
         mFinalizePass.program().set("uOwnRadiance", ownRadiance ? 1 : 0);
         mFinalizePass.program().set("uLayers", layers);
-        mFinalizePass.program().set("uSize", size);
         mFinalizePass.program().set("uCacheCount", cacheCount);
         mFinalizePass.program().set("uChunks", chunks);
         mFinalizePass.program().set("uOcclusionCells", mParams.occlusionCells ? 1 : 0);

@@ -86,6 +86,7 @@ struct LightSkinParams {
     bool occlusionCells = true;   // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
     bool occluderLight = true;    // ... an occluder's own reflected light is not removed (not in the paper)
     bool exactArea = false;       // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
+    bool cubeFaceBudget = true;   // a point light's cube faces share one rsm.size^2 (RSMCubeFaces; not in the paper)
     std::uint32_t seed = 1;
     bool animateSeed = false;
     LightCacheParams caches; // keys lightskin.cache*

@@ -38,7 +38,8 @@ layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightC
 layout(std430, binding = kBindingProxySums) writeonly buffer Sums { vec4 partialSums[]; }; // kProxySumVec4s per (cache, chunk)
 
 uniform int uAllTexels;      // 1: every RSM texel (lightskin-full), 0: the selected draws
-uniform int uValCount;       // texels (all layers) or draws
+uniform int uValCount;       // texels (the layers' squares in use) or draws
+uniform int uLayers;         // RSM layers
 uniform int uSelectionCount; // N_sVAL
 uniform int uSize;           // RSM edge [texels]
 uniform int uCacheCount;
@@ -75,11 +76,20 @@ void main()
     for (int s = 0; s < kProxySumCount; ++s) sums[s] = 0.0;
     int chunk = uChunkFirst + int(gl_WorkGroupID.x);
     int chunkEnd = min((chunk + 1) * uChunkSize, uValCount);
+    // lightskin-full: VAL j is texel j of the layers' squares laid end to end, row by row (a layer's
+    // square is its RSMLayerView's info.z wide: rsm.size, or less for cube faces within one light's
+    // budget, rsm_pass.h RSMCubeFaces); j only grows, so the layer is found by walking forwards.
+    int layer = 0, layerStart = 0, side = uAllTexels != 0 ? int(views[0].info.z) : 0;
     for (int j = chunk * uChunkSize + int(lane); j < chunkEnd; j += kLightSkinGroupSize) {
         ivec3 texel;
         float selection; // P_VAL: the expected number of times the VAL is drawn
         if (uAllTexels != 0) {
-            texel = ivec3(j % uSize, (j / uSize) % uSize, j / (uSize * uSize));
+            while (j >= layerStart + side * side && layer + 1 < uLayers) {
+                layerStart += side * side;
+                side = int(views[++layer].info.z);
+            }
+            int i = j - layerStart;
+            texel = ivec3(i % side, i / side, layer);
             selection = 1.0;
         } else {
             ImportanceSample d = draws[j];

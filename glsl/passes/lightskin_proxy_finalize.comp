@@ -33,7 +33,6 @@ uniform int uChunks;
 uniform int uOcclusionCells; // 1: a target per occlusion cell; 0: the paper's, the proxies' spheres
 uniform int uOwnRadiance;    // 1: the occlusion pass reads each cache's own radiance (lightskin.occluderLight)
 uniform int uLayers;         // RSM layers
-uniform int uSize;           // RSM edge [texels]
 uniform int uViewCulling;    // 1: a cache no pixel can use gets no light (its sums were not made)
 uniform float uCullRadius;   // the lookup's search radius d_eps [m]
 
@@ -50,7 +49,8 @@ float ownRadiance(vec3 cp, vec3 cn)
         if (!(clip.w > 0.0)) continue;
         vec3 ndc = clip.xyz / clip.w;
         if (any(greaterThan(abs(ndc), vec3(1.0)))) continue;
-        ivec2 xy = clamp(ivec2((ndc.xy * 0.5 + 0.5) * float(uSize)), ivec2(0), ivec2(uSize - 1));
+        int layerSize = int(view.info.z); // the square the layer's view was drawn into (RSMCubeFaces)
+        ivec2 xy = clamp(ivec2((ndc.xy * 0.5 + 0.5) * float(layerSize)), ivec2(0), ivec2(layerSize - 1));
         LightSkinVAL val = readLightSkinVAL(ivec3(xy, layer));
         if (!val.valid || dot(val.normal, cn) < 0.5 || abs(dot(val.normal, cp - val.position)) > sqrt(val.area) ||
             distance(val.position, cp) > 2.0 * sqrt(val.areaTilted))

@@ -45,7 +45,8 @@ struct ViewSample {
 struct RSMLayerView {
     vec4 depthRow; // dot(depthRow, vec4(x, 1)) = the depth of world point x along the light's view axis [m]
     vec4 info;     // x texel factor 4/(P00 P11 W H) (on-axis solid angle [sr] or, orthographic, area [m^2]),
-                   // y 1 for an orthographic (directional) layer, zw unused
+                   // y 1 for an orthographic (directional) layer, z the layer's square in use from texel
+                   // (0, 0) [texels] (rsm_pass.h RSMCubeFaces), w unused
     vec4 clip0;    // the layer's clipFromWorld, column by column (a cache's own texel, the finalize pass)
     vec4 clip1;
     vec4 clip2;
