@@ -119,6 +119,41 @@ Scene planeScene(float x0, float x1, float z0, float z1, float y, float rho)
     return scene;
 }
 
+// planeScene with a point light of `intensity` at height h above the origin.
+Scene pointLitPlane(float x0, float x1, float z0, float z1, float rho, float h, float intensity)
+{
+    Scene scene = planeScene(x0, x1, z0, z1, 0.0f, rho);
+    Light point;
+    point.name = "point";
+    point.type = LightType::Point;
+    point.position = {0.0f, h, 0.0f};
+    point.intensity = intensity;
+    scene.lights.push_back(point);
+    return scene;
+}
+
+// A small emissive quad (half side `side`, radiance 50) at height h facing down: material 1, mesh
+// and instance appended to planeScene's.
+void addEmissiveQuadDown(Scene& scene, float h, float side)
+{
+    Material lamp;
+    lamp.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    lamp.emission = glm::vec3(50.0f);
+    scene.materials.push_back(lamp);
+    Mesh quad;
+    quad.material = 1;
+    const glm::vec3 corners[4] = {{-side, h, -side}, {-side, h, side}, {side, h, side}, {side, h, -side}};
+    for (const glm::vec3& c : corners) {
+        Vertex v;
+        v.position = c;
+        v.normal = {0.0f, -1.0f, 0.0f};
+        quad.vertices.push_back(v);
+    }
+    quad.indices = {0, 2, 1, 0, 3, 2}; // facing down
+    scene.meshes.push_back(quad);
+    scene.instances.push_back(Instance{1, glm::mat4(1.0f)});
+}
+
 Light spotDown(glm::vec3 position, float intensity, float inner, float outer)
 {
     Light spot;
@@ -346,14 +381,9 @@ TEST_CASE("RSM of a plane under a point light: six cube faces, positions and flu
     // by an edge and the sum is a midpoint rule over whole texels, as in the spot test.
     const float rho = 0.6f, intensity = 4.0f, h = 1.0f;
     const float x0 = -2.0f, x1 = 2.0f, z0 = -2.0f, z1 = 4.0f;
-    Scene scene = planeScene(x0, x1, z0, z1, 0.0f, rho);
-    Light point;
-    point.name = "point";
-    point.type = LightType::Point;
-    point.position = {0.0f, h, 0.0f};
-    point.intensity = intensity;
-    scene.lights.push_back(point);
+    Scene scene = pointLitPlane(x0, x1, z0, z1, rho, h, intensity);
     scene.validate();
+    const glm::vec3 lightPosition = scene.lights[0].position;
     const int size = 64;
     Rendered r = renderRSM(scene, size);
     REQUIRE(r.pass->layerCount() == 6);
@@ -363,7 +393,7 @@ TEST_CASE("RSM of a plane under a point light: six cube faces, positions and flu
         CHECK(view.kind == shared::kRSMLightPoint);
         CHECK(view.face == face);
         // The cube faces are the shadow cubes' (light_view.h), up to the near/far planes.
-        const glm::mat4 faceView = shared::lightViewCubeFaceViewFromWorld(point.position, face);
+        const glm::mat4 faceView = shared::lightViewCubeFaceViewFromWorld(lightPosition, face);
         CHECK(view.viewFromWorld == faceView);
         // +Y looks away from the plane; every other face sees part of it.
         const int minCovered = face == 2 ? 0 : size * size / 16; // measured 0 (+Y), 1024 or more
@@ -398,22 +428,7 @@ TEST_CASE("RSM of a plane under an emissive quad: cosine sources over their hemi
     const float rho = 0.6f, h = 1.0f, side = 0.05f;
     const float x0 = -2.0f, x1 = 2.0f, z0 = -2.0f, z1 = 4.0f;
     Scene scene = planeScene(x0, x1, z0, z1, 0.0f, rho);
-    Material lamp;
-    lamp.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    lamp.emission = glm::vec3(50.0f);
-    scene.materials.push_back(lamp);
-    Mesh quad;
-    quad.material = 1;
-    const glm::vec3 corners[4] = {{-side, h, -side}, {-side, h, side}, {side, h, side}, {side, h, -side}};
-    for (const glm::vec3& c : corners) {
-        Vertex v;
-        v.position = c;
-        v.normal = {0.0f, -1.0f, 0.0f};
-        quad.vertices.push_back(v);
-    }
-    quad.indices = {0, 2, 1, 0, 3, 2}; // facing down
-    scene.meshes.push_back(quad);
-    scene.instances.push_back(Instance{1, glm::mat4(1.0f)});
+    addEmissiveQuadDown(scene, h, side);
     scene.validate();
     const int size = 64;
     Rendered r = renderRSM(scene, size);
@@ -624,13 +639,7 @@ TEST_CASE("RSM cube faces within one light's budget (LightSkin): each face floor
     // rasterisation at 52^2 texel for texel, and the flux onto the plane the closed form.
     const float rho = 0.6f, intensity = 4.0f, h = 1.0f;
     const float x0 = -2.0f, x1 = 2.0f, z0 = -2.0f, z1 = 4.0f;
-    Scene scene = planeScene(x0, x1, z0, z1, 0.0f, rho);
-    Light point;
-    point.name = "point";
-    point.type = LightType::Point;
-    point.position = {0.0f, h, 0.0f};
-    point.intensity = intensity;
-    scene.lights.push_back(point);
+    Scene scene = pointLitPlane(x0, x1, z0, z1, rho, h, intensity);
     scene.lights.push_back(spotDown({0.0f, 2.0f, 0.0f}, 1.0f, 0.35f, 0.5f));
     scene.validate();
     const int size = 128, faceSize = 52;
@@ -692,22 +701,7 @@ TEST_CASE("RSM cube faces within one light's budget (LightSkin): each face floor
 
     // An emissive quad's hemisphere: its faces (5, +Y is behind it) share one budget too.
     Scene lamp = planeScene(x0, x1, z0, z1, 0.0f, rho);
-    Material glow;
-    glow.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    glow.emission = glm::vec3(50.0f);
-    lamp.materials.push_back(glow);
-    Mesh quad;
-    quad.material = 1;
-    for (const glm::vec3& c : {glm::vec3(-0.05f, h, -0.05f), glm::vec3(-0.05f, h, 0.05f), glm::vec3(0.05f, h, 0.05f),
-                               glm::vec3(0.05f, h, -0.05f)}) {
-        Vertex v;
-        v.position = c;
-        v.normal = {0.0f, -1.0f, 0.0f};
-        quad.vertices.push_back(v);
-    }
-    quad.indices = {0, 2, 1, 0, 3, 2};
-    lamp.meshes.push_back(quad);
-    lamp.instances.push_back(Instance{1, glm::mat4(1.0f)});
+    addEmissiveQuadDown(lamp, h, 0.05f);
     lamp.validate();
     Rendered area = renderRSM(lamp, size, RSMMips::None, RSMCubeFaces::LightBudget);
     REQUIRE(area.pass->layerCount() == 5);
