@@ -5,7 +5,8 @@
 // DCMTK, FFmpeg, ...), and the dynamic loader's relocations for them took 0.4 s at every start of
 // vplgi and of the test binaries (0.8 s under ASan), before main(): more than a small render itself.
 // image_io.cpp opens the module with dlopen on the first image it reads or writes, so a command that
-// fails on its arguments, lists parameters or renders only statistics never pays for it.
+// fails on its arguments, lists parameters or renders only statistics never pays for it. The
+// sanitizer builds link it in instead (core/CMakeLists.txt says why).
 //
 // Plain C types only, so nothing C++ (exceptions, allocators, std::string) crosses the boundary: the
 // module catches everything and reports one line of text.

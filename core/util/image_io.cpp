@@ -52,6 +52,13 @@ bool writeBytes(const fs::path& file, const std::vector<unsigned char>& bytes, s
     return ok;
 }
 
+#ifdef VPLGI_IMAGE_CODEC_LINKED
+// Sanitizer builds: the codec is linked in (core/CMakeLists.txt says why).
+const VplgiImageCodec& codec()
+{
+    return *vplgi_image_codec();
+}
+#else
 // The OpenImageIO codec module (core/util/image_codec.h says why it is loaded on first use): first
 // beside the running executable (a copied binary takes its module along), then where the build put it.
 const VplgiImageCodec& codec()
@@ -90,6 +97,7 @@ const VplgiImageCodec& codec()
     if (loaded == nullptr) throw Error(failure);
     return *loaded;
 }
+#endif
 
 void appendBytes(void* context, const void* bytes, std::size_t size)
 {
