@@ -42,4 +42,20 @@ std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<
 std::vector<glm::uvec4> traceLightCacheReach(const RayScene& rays, const std::vector<LightCache>& caches,
                                              float radius);
 
+// LightSkin's visibility maps (glsl/shared/lightskin_visibility.h; not in the paper): for each cache,
+// size x size texels over its hemisphere, cache after cache, row after row; texel (x, y) is
+// uvec2(bits of the distance t, packSnorm2x16 of the octEncode'd hit normal turned towards the
+// cache), t = kVisibilityMapMiss for a miss. The rays start lightCacheVisibilityLift(rays) above the
+// cache and stop at any surface from either side (Looker::None, as the path tracer's rays), except
+// within 4 lifts of their start (a surface that close counts as the cache's own). Deterministic.
+std::vector<glm::uvec2> traceLightCacheVisibilityMaps(const RayScene& rays, const std::vector<LightCache>& caches,
+                                                      int size);
+// How far the maps' rays start above the cache (and the margin of their verdicts): 1e-4 of the
+// scene's diagonal, the lift of traceCacheVisibility.
+float lightCacheVisibilityLift(const RayScene& rays);
+// The maps' visibility (0-1) of a VAL at `val` from cache `index`, as glsl/passes/lightskin_proxy.comp
+// takes it. A VAL below the lifted cache's tangent plane takes the map's rim.
+float lightCacheVisibilityMapVisibility(const std::vector<glm::uvec2>& maps, int size, const LightCache& cache,
+                                        std::size_t index, glm::vec3 val, float lift);
+
 } // namespace vplgi

@@ -76,6 +76,12 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     v.field("lightskin.tracedOcclusion", tracedOcclusion,
             "each cache's visibility traced with Embree instead (the reference for the double projection; "
             "CPU, not real-time; not in the paper)");
+    v.field("lightskin.visibilityMaps", visibilityMaps,
+            "occlusion by visibility maps instead of the double projection: each cache's hemisphere traced once with "
+            "Embree when the caches are made (distance and plane per texel), each VAL weighted by what its map says "
+            "(not in the paper; glsl/shared/lightskin_visibility.h)");
+    v.field("lightskin.visibilityMapSize", visibilityMapSize, 2, 256,
+            "texels along each side of a cache's visibility map (8 bytes each, per cache)");
     v.field("lightskin.exactArea", exactArea,
             "VAL area: the texel's tilted footprint (MATH.md 9.1) instead of eq. (1)'s disk across the light's view");
     v.field("lightskin.cubeFaceBudget", cubeFaceBudget,
@@ -134,12 +140,27 @@ void LightSkinTechnique::uploadCaches()
     // The reach records (issue "LightSkin's indirect shadows", part 2; not in the paper) for the
     // grid's search radius; without lightskin.reach the lookup skips the test, as the paper.
     if (mParams.reach) mCaches.reach = traceLightCacheReach(mRays->get(), mCaches.caches, mCaches.grid.cellSize);
+    // The visibility maps (not in the paper): traced once, like the reach.
+    mVisibilityMaps.clear();
+    if (mParams.visibilityMaps) {
+        const double bytes = static_cast<double>(mCaches.caches.size()) * mParams.visibilityMapSize *
+                             mParams.visibilityMapSize * sizeof(glm::uvec2);
+        if (bytes > static_cast<double>(kMaxVisibilityMapBytes))
+            throw Error("lightskin.visibilityMapSize " + std::to_string(mParams.visibilityMapSize) + " needs " +
+                        std::to_string(static_cast<long long>(bytes / (1 << 20))) + " MiB for " +
+                        std::to_string(mCaches.caches.size()) + " caches, more than " +
+                        std::to_string(kMaxVisibilityMapBytes >> 20) + " MiB: lower it or lightskin.cacheDistance");
+        if (mProgress) mProgress("lightskin visibility maps", 0, 1);
+        mVisibilityMaps = traceLightCacheVisibilityMaps(mRays->get(), mCaches.caches, mParams.visibilityMapSize);
+        if (mProgress) mProgress("lightskin visibility maps", 1, 1);
+    }
     const auto count = static_cast<GLsizeiptr>(std::max<std::size_t>(mCaches.caches.size(), 1));
     static_assert(sizeof(LightCache) == sizeof(shared::GpuLightCache), "LightCache is uploaded as GpuLightCache");
     mCacheBuffer = storageBufferOf("light caches", mCaches.caches);
     mCellBuffer = storageBufferOf("light cache cells", mCaches.grid.slots);
     mIndexBuffer = storageBufferOf("light cache indices", mCaches.grid.cacheIndices);
     mReachBuffer = storageBufferOf("light cache reach", mCaches.reach);
+    mVisibilityBuffer = storageBufferOf("light cache visibility maps", mVisibilityMaps);
     mProxies = gl::Buffer("proxy lights", count * static_cast<GLsizeiptr>(sizeof(shared::ProxyLight)));
     mCacheRadiance = gl::Buffer("cache radiance", count * static_cast<GLsizeiptr>(sizeof(float)));
     mOcclusionTargets = gl::Buffer("occlusion targets", count * shared::kOcclusionCells *
@@ -156,7 +177,9 @@ void LightSkinTechnique::applyParamChanges(const std::set<std::string>& changedK
 {
     // A changed distribution parameter redistributes the caches (from the disk cache when it has them).
     for (const std::string& key : changedKeys)
-        if (key.rfind("lightskin.cache", 0) == 0 || key == "lightskin.reach") mCachesStale = true;
+        if (key.rfind("lightskin.cache", 0) == 0 || key == "lightskin.reach" || key == "lightskin.visibilityMaps" ||
+            key == "lightskin.visibilityMapSize")
+            mCachesStale = true;
 }
 
 void LightSkinTechnique::update(const FrameContext&)
@@ -306,6 +329,11 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         proxy.set("uChunks", chunks);
         proxy.set("uViewCulling", mParams.viewCulling ? 1 : 0);
         proxy.set("uCullRadius", mCaches.grid.cellSize);
+        const bool maps = mParams.visibilityMaps && !mParams.tracedOcclusion;
+        bindStorageBuffer(shared::kBindingLightCacheVisibility, mVisibilityBuffer);
+        proxy.set("uVisibilityMaps", maps ? 1 : 0);
+        proxy.set("uVisibilityMapSize", mParams.visibilityMapSize);
+        proxy.set("uVisibilityLift", lightCacheVisibilityLift(mRays->get()));
         // lightskin-full's pass can take minutes (every texel for every cache): chunk by chunk with
         // progress when it is that large (caches x VALs above 1e9), in one dispatch otherwise.
         const bool showProgress = mFull && static_cast<double>(cacheCount) * valCount > 1e9 && mProgress;
@@ -324,8 +352,8 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         bindStorageBuffer(shared::kBindingOcclusionTargets, mOcclusionTargets);
         bindStorageBuffer(shared::kBindingCacheRadiance, mCacheRadiance);
         // Each cache's own radiance only where the double projection's cells will read it.
-        const bool ownRadiance =
-            mParams.occlusion && !mParams.tracedOcclusion && mParams.occlusionCells && mParams.occluderLight;
+        const bool ownRadiance = mParams.occlusion && !mParams.tracedOcclusion && !mParams.visibilityMaps &&
+                                 mParams.occlusionCells && mParams.occluderLight;
         mFinalizePass.program().set("uOwnRadiance", ownRadiance ? 1 : 0);
         mFinalizePass.program().set("uLayers", layers);
         mFinalizePass.program().set("uCacheCount", cacheCount);
@@ -338,7 +366,7 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
     if (mParams.tracedOcclusion) {
         gl::PassTimer::Scope scope(frame.timer, "occlusion (traced)");
         traceOcclusion(size, layers);
-    } else if (mParams.occlusion) {
+    } else if (mParams.occlusion && !mParams.visibilityMaps) {
         gl::PassTimer::Scope scope(frame.timer, "occlusion");
         mOcclusionPass.program().set("uCacheCount", cacheCount);
         mOcclusionPass.program().set("uOccluderLight", mParams.occluderLight ? 1 : 0);

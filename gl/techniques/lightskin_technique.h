@@ -29,7 +29,9 @@
 //  occlusion       lightskin_occlusion.comp: double projection of the light (per occlusion cell of
 //                  the cache's unit disk, ours; or the proxies' bounding spheres, the paper's) and
 //                  the other caches' disks (section 3, "Occlusion"); lightskin.occlusion=false skips
-//                  it, lightskin.tracedOcclusion traces each cache's visibility with Embree instead
+//                  it, lightskin.tracedOcclusion traces each cache's visibility with Embree instead;
+//                  with lightskin.visibilityMaps (ours) the proxy pass weights each VAL by the
+//                  cache's visibility map instead, and this pass is skipped
 //  interpolation   lightskin_shading.frag: every pixel finds its <= 16 nearest caches, interpolates
 //                  the proxies (eq. 8-9) and shades with them
 //
@@ -83,6 +85,8 @@ struct LightSkinParams {
     bool viewCulling = true;      // proxies only for caches whose d_eps ball meets the frustum (not in the paper)
     bool occlusion = true;        // double projection (section 3)
     bool tracedOcclusion = false; // visibility per cache by Embree rays (the reference; not in the paper)
+    bool visibilityMaps = false;  // each cache's hemisphere traced once, each VAL weighted by it (not in the paper)
+    int visibilityMapSize = 32;   // ... texels along each side of a cache's map
     bool occlusionCells = true;   // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
     bool occluderLight = true;    // ... an occluder's own reflected light is not removed (not in the paper)
     bool exactArea = false;       // MATH.md 9.1: the tilted texel footprint instead of eq. (1)'s disk
@@ -149,6 +153,7 @@ private:
     gl::Buffer mCellBuffer;       // uint[cells + 1]
     gl::Buffer mIndexBuffer;      // uint[entries]
     gl::Buffer mReachBuffer;      // uvec4[caches]: reach records (glsl/shared/light_cache_lookup.h), or one unused
+    gl::Buffer mVisibilityBuffer; // uvec2[caches x size^2]: visibility maps (glsl/shared/lightskin_visibility.h), or one
     gl::Buffer mProxies;          // ProxyLight[caches]
     gl::Buffer mProxySums;        // vec4[caches x chunks x kProxySumVec4s]
     gl::Buffer mOcclusionTargets; // OcclusionTarget[caches x kOcclusionCells]
@@ -162,6 +167,8 @@ private:
     long long mVALsPerCache = 0;
     long long mCachesInView = 0;       // caches whose proxies the last frame made (lightskin.viewCulling)
     std::vector<std::uint8_t> mInView; // per cache: 1 when the view culling keeps it (the traced occlusion's too)
+    std::vector<glm::uvec2> mVisibilityMaps; // lightskin.visibilityMaps, cache after cache (traced_visibility.h)
+    static constexpr std::size_t kMaxVisibilityMapBytes = std::size_t(1) << 30; // 1 GiB of GPU memory at most
     float mImportanceRange = 1.0f; // of the importance view: 20x the mean texel importance
 };
 

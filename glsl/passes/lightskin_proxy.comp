@@ -23,6 +23,7 @@
 #include "../shared/importance.h"
 #include "../shared/lightskin.h"
 #include "../shared/lightskin_gpu.h"
+#include "../shared/lightskin_visibility.h"
 #include "../shared/normals.h"
 #include "../shared/rsm.h"
 #include "../shared/tonemap.h"
@@ -36,6 +37,7 @@ layout(std430, binding = kBindingRSMLayerViews) readonly buffer Views { RSMLayer
 layout(std430, binding = kBindingRSMLayers) readonly buffer Layers { RSMLayerLight layerLights[]; };
 layout(std430, binding = kBindingLightCaches) readonly buffer Caches { GpuLightCache caches[]; };
 layout(std430, binding = kBindingProxySums) writeonly buffer Sums { vec4 partialSums[]; }; // kProxySumVec4s per (cache, chunk)
+layout(std430, binding = kBindingLightCacheVisibility) readonly buffer VisibilityMaps { uvec2 visibilityMaps[]; };
 
 uniform int uAllTexels;      // 1: every RSM texel (lightskin-full), 0: the selected draws
 uniform int uValCount;       // texels (the layers' squares in use) or draws
@@ -51,8 +53,35 @@ uniform int uFluxWeights;    // weight positions by the VAL's flux luminance too
 uniform int uExactArea;      // MATH.md 9.1's tilted footprint instead of eq. (1)
 uniform int uViewCulling;    // 1: no sums for a cache no pixel can use (lightskin.h, lightCacheInView)
 uniform float uCullRadius;   // the lookup's search radius d_eps [m]
+uniform int uVisibilityMaps;      // 1: weight each VAL by the cache's visibility map (lightskin.visibilityMaps, ours)
+uniform int uVisibilityMapSize;   // texels along a map's side
+uniform float uVisibilityLift;    // the maps' rays start this far above the cache [m]
 
 #include "../lib/lightskin_val.glsl"
+
+// The visibility of a VAL at xl from cache `cache` (lift the cache's lifted position, frame its
+// disk's), as glsl/shared/lightskin_visibility.h and core/lightskin/traced_visibility.cpp take it.
+float mapVisibility(int cache, vec3 origin, mat3 frame, vec3 xl)
+{
+    // A VAL within the lift of the cache's plane takes the map's rim (visibilityMapFromLocal clamps z).
+    vec3 local = transpose(frame) * (xl - origin);
+    if (!(dot(local, local) > 0.0)) return 1.0;
+    int size = uVisibilityMapSize;
+    vec2 uv = visibilityMapFromLocal(local);
+    ivec2 first = visibilityMapFirstNeighbour(uv, size);
+    vec3 d[4];
+    float t[4];
+    vec3 n[4];
+    for (int k = 0; k < 4; ++k) {
+        int x = min(first.x + (k & 1), size - 1), y = min(first.y + (k >> 1), size - 1);
+        uvec2 record = visibilityMaps[cache * size * size + y * size + x];
+        d[k] = frame * visibilityMapTexelDirection(x, y, size);
+        t[k] = uintBitsToFloat(record.x);
+        n[k] = octDecode(unpackSnorm2x16(record.y));
+    }
+    return visibilityMapVisibility(origin, xl, uVisibilityLift, size, visibilityMapBilinear(uv, first, size), d[0], t[0],
+                                   n[0], d[1], t[1], n[1], d[2], t[2], n[2], d[3], t[3], n[3]);
+}
 
 // The sums per proxy and per occlusion cell (lightskin.h, occlusionCell) in lightskin_gpu.h's order.
 shared float sSums[kProxySumCount][kLightSkinGroupSize];
@@ -107,6 +136,10 @@ void main()
         vec3 toLight = v * inversesqrt(d2);
         float formFactor = diskFormFactor(area, dot(nl, -toLight), dot(cn, toLight), d2);
         // Eq. (14)/(15) without the receiver's colour: Phi cos cos / (A + pi d^2) / P_VAL.
+        // lightskin.visibilityMaps (ours): the VAL's light as far as the cache's map lets it through.
+        float visible = uVisibilityMaps != 0 ? mapVisibility(cache, cp + uVisibilityLift * cn, diskFrame, xl) : 1.0;
+        if (!(visible > 0.0)) continue;
+        formFactor *= visible;
         vec3 radiance = flux * (formFactor / area) / selection;
         float cosMirror = dot(view, mirrorDirection(toLight, cn));
         float lobe = phongLobe(cosMirror, k); // cos+^k theta_e

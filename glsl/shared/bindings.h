@@ -46,6 +46,7 @@ VPLGI_CONST int kBindingProxySums = 23;          // SSBO vec4[]: the proxy pass'
 VPLGI_CONST int kBindingOcclusionTargets = 24;   // SSBO OcclusionTarget[]: kOcclusionCells per cache
 VPLGI_CONST int kBindingLightCacheReach = 25;    // SSBO uvec4[]: each cache's reach (glsl/shared/light_cache_lookup.h)
 VPLGI_CONST int kBindingCacheRadiance = 26;      // SSBO float[]: each cache's own reflected radiance (luminance)
+VPLGI_CONST int kBindingLightCacheVisibility = 29; // SSBO uvec2[]: each cache's visibility map (glsl/shared/lightskin_visibility.h)
 // Metropolis-Hastings chains over an importance map (gl/passes/metropolis_chains.h; technique tcas).
 VPLGI_CONST int kBindingChainStates = 27;        // SSBO uint[]: each chain's texel, y * W + x (kNoChainState: none)
 VPLGI_CONST int kBindingChainCounters = 28;      // SSBO uint[1]: chains that moved in the last step

@@ -101,20 +101,23 @@ TEST_CASE("lightskin: the double projection removes the light a wall blocks and 
           "[lightskin][image][numbers]")
 {
     test::ensureGLContext();
-    auto mean = [&](bool blocker, bool occlusion) {
+    auto mean = [&](bool blocker, bool occlusion, bool maps = false) {
         const Scene scene = blockedWallScene(blocker);
         std::unique_ptr<Renderer> renderer =
             test::makeTechniqueRenderer(scene, "lightskin-full",
                                         {{"rsm.size", "32"},
                                          {"lightskin.cacheDistance", "0.4"},
-                                         {"lightskin.occlusion", occlusion ? "true" : "false"}});
+                                         {"lightskin.occlusion", occlusion ? "true" : "false"},
+                                         {"lightskin.visibilityMaps", maps ? "true" : "false"}});
         return meanLuminance(test::renderIndirect(*renderer, scene.cameras[0], 32, 24));
     };
     const double blockedOn = mean(true, true), blockedOff = mean(true, false);
     const double openOn = mean(false, true), openOff = mean(false, false);
+    const double blockedMaps = mean(true, true, true), openMaps = mean(false, true, true);
     MEASURED("wall seen past a blocker: indirect with occlusion / without "
              << blockedOn / blockedOff << "; without the blocker: " << openOn / openOff << " (means " << blockedOn
-             << " " << blockedOff << " " << openOn << " " << openOff << ")");
+             << " " << blockedOff << " " << openOn << " " << openOff << "); with visibility maps instead "
+             << blockedMaps / blockedOff << " and " << openMaps / openOff);
     REQUIRE(openOff > 0.0);
     REQUIRE(blockedOff > 0.0); // without occlusion the caches see the lit floor through the blocker
     // Measured exactly 0 with the blocker and 1.000 without it (0.978, 2.2% falsely occluded, before
@@ -123,6 +126,9 @@ TEST_CASE("lightskin: the double projection removes the light a wall blocks and 
     // through); without it the bound allows about 3x the false occlusion.
     CHECK(blockedOn < 1e-3 * blockedOff);
     CHECK(openOn > 0.94 * openOff);
+    // The visibility maps (lightskin.visibilityMaps, not in the paper): the same bounds.
+    CHECK(blockedMaps < 1e-3 * blockedOff);
+    CHECK(openMaps > 0.94 * openOff);
 }
 
 TEST_CASE("lightskin: occlusion acts on a wall that a board shades from a broad lit floor (the board scene)",
@@ -141,12 +147,14 @@ TEST_CASE("lightskin: occlusion acts on a wall that a board shades from a broad 
     const double cells = mean({});
     const double traced = mean({{"lightskin.tracedOcclusion", "true"}});
     const double paper = mean({{"lightskin.occlusionCells", "false"}});
+    const double maps = mean({{"lightskin.visibilityMaps", "true"}});
     const double off = mean({{"lightskin.occlusion", "false"}});
     const double reference = meanLuminance(test::oneBounceReference(scene, camera, width, height, 1024));
     MEASURED("board scene, the wall behind the board (32x18, RSM 128^2, automatic d_eps): lightskin-full against the "
              "one-bounce path tracer with occlusion cells "
              << 100.0 * (cells / reference - 1.0) << "%, with traced visibility " << 100.0 * (traced / reference - 1.0)
-             << "%, the paper's sphere per proxy " << 100.0 * (paper / reference - 1.0) << "%, without occlusion "
+             << "%, with visibility maps " << 100.0 * (maps / reference - 1.0) << "%, the paper's sphere per proxy "
+             << 100.0 * (paper / reference - 1.0) << "%, without occlusion "
              << 100.0 * (off / reference - 1.0) << "%; cells / traced " << cells / traced);
     REQUIRE(reference > 0.0);
     // The paper's sphere contains the cache (its VALs span the floor): no occluder counts, so it
@@ -162,6 +170,50 @@ TEST_CASE("lightskin: occlusion acts on a wall that a board shades from a broad 
     // noise at 1024 spp moves the mean by well under 1%, the rest is deterministic.
     CHECK(std::abs(cells / traced - 1.0) < 0.3);
     CHECK(std::abs(cells / reference - 1.0) < 0.2);
+    // The visibility maps (not in the paper): measured +6.8% (1.11x the traced visibility; the maps
+    // err towards light within a texel of the board's edge); the same acceptance line.
+    CHECK(std::abs(maps / traced - 1.0) < 0.3);
+    CHECK(std::abs(maps / reference - 1.0) < 0.2);
+}
+
+TEST_CASE("lightskin: visibility maps keep the sealed rooms' closed room dark", "[lightskin][image][numbers]")
+{
+    // The sealed rooms (core/scene/builtin_scenes.cpp makeSealed): the path tracer gives exactly 0
+    // in the closed room. The closed room's brightest indirect pixel over the lit room's mean, as
+    // conform measures it, for lightskin-full (deterministic) with the double projection and with
+    // the visibility maps (lightskin.visibilityMaps, not in the paper).
+    test::ensureGLContext();
+    const Scene scene = makeBuiltinScene("sealed");
+    const Camera* lit = &scene.cameras[0];
+    const Camera* closed = nullptr;
+    for (const Camera& camera : scene.cameras)
+        if (camera.name == "closed") closed = &camera;
+    REQUIRE(closed != nullptr);
+    auto leak = [&](const Settings& extra) {
+        Settings settings = {{"rsm.size", "128"}};
+        settings.insert(settings.end(), extra.begin(), extra.end());
+        std::unique_ptr<Renderer> renderer = test::makeTechniqueRenderer(scene, "lightskin-full", settings);
+        const double litMean = meanLuminance(test::renderIndirect(*renderer, *lit, 32, 18));
+        const ImageRGBA32F image = test::renderIndirect(*renderer, *closed, 32, 18);
+        double brightest = 0.0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const float* p = image.at(x, y);
+                brightest = std::max(brightest, double(shared::luminanceRec709(glm::vec3(p[0], p[1], p[2]))));
+            }
+        REQUIRE(litMean > 0.0);
+        return brightest / litMean;
+    };
+    const double projection = leak({});
+    const double maps = leak({{"lightskin.visibilityMaps", "true"}});
+    const double none = leak({{"lightskin.occlusion", "false"}});
+    MEASURED("sealed rooms, lightskin-full (32x18, RSM 128^2): the closed room's brightest indirect pixel over the lit "
+             "room's mean: double projection " << projection << ", visibility maps " << maps << ", no occlusion " << none);
+    // Measured: double projection 0.31, maps exactly 0, no occlusion 2.24. The bound on the maps is
+    // the issue's target (below 1e-4 of the lit room's mean), not a tolerance; the double projection
+    // is far from it (docs/lightskin.md, "Occlusion").
+    CHECK(none > 0.1); // the check can fail: without occlusion the closed room is lit
+    CHECK(maps < 1e-4);
 }
 
 TEST_CASE("lightskin and lightskin-full images are bit-identical over runs", "[lightskin][lightskin-determinism]")
