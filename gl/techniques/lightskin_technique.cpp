@@ -66,7 +66,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
     v.field("lightskin.viewCulling", viewCulling,
             "proxies and occlusion only for the caches a pixel can use, those whose d_eps ball meets the view "
             "frustum (not in the paper; the image is bit-identical without it)");
-    v.field("lightskin.occlusion", occlusion, "indirect occlusion by double projection (section 3)");
+    v.field("lightskin.occlusion", occlusion,
+            "indirect occlusion: by the visibility maps (the default), or with lightskin.visibilityMaps=false by double "
+            "projection (section 3)");
     v.field("lightskin.occlusionCells", occlusionCells,
             "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
             "false: one sphere per proxy (the paper)");
@@ -77,9 +79,9 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
             "each cache's visibility traced with Embree instead (the reference for the double projection; "
             "CPU, not real-time; not in the paper)");
     v.field("lightskin.visibilityMaps", visibilityMaps,
-            "occlusion by visibility maps instead of the double projection: each cache's hemisphere traced once with "
-            "Embree when the caches are made (distance and plane per texel), each VAL weighted by what its map says "
-            "(not in the paper; glsl/shared/lightskin_visibility.h)");
+            "occlusion by visibility maps: each cache's hemisphere traced once with Embree when the caches are made "
+            "(distance and plane per texel), each VAL weighted by what its map says (not in the paper; "
+            "glsl/shared/lightskin_visibility.h); false: the paper's double projection (section 3)");
     v.field("lightskin.visibilityMapSize", visibilityMapSize, 2, 256,
             "texels along each side of a cache's visibility map (8 bytes each, per cache)");
     v.field("lightskin.exactArea", exactArea,
@@ -329,7 +331,7 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
         proxy.set("uChunks", chunks);
         proxy.set("uViewCulling", mParams.viewCulling ? 1 : 0);
         proxy.set("uCullRadius", mCaches.grid.cellSize);
-        const bool maps = mParams.visibilityMaps && !mParams.tracedOcclusion;
+        const bool maps = mParams.occlusion && mParams.visibilityMaps && !mParams.tracedOcclusion;
         bindStorageBuffer(shared::kBindingLightCacheVisibility, mVisibilityBuffer);
         proxy.set("uVisibilityMaps", maps ? 1 : 0);
         proxy.set("uVisibilityMapSize", mParams.visibilityMapSize);

@@ -83,9 +83,9 @@ struct LightSkinParams {
     bool fixedRadius = true;      // eq. (8)'s d_max = the search radius d_eps (not in the paper: the farthest cache)
     bool reach = true;            // each cache's traced reach limits the points it lights (not in the paper)
     bool viewCulling = true;      // proxies only for caches whose d_eps ball meets the frustum (not in the paper)
-    bool occlusion = true;        // double projection (section 3)
+    bool occlusion = true;        // occlusion: by the visibility maps, or with visibilityMaps=false the double projection (section 3)
     bool tracedOcclusion = false; // visibility per cache by Embree rays (the reference; not in the paper)
-    bool visibilityMaps = false;  // each cache's hemisphere traced once, each VAL weighted by it (not in the paper)
+    bool visibilityMaps = true;   // each cache's hemisphere traced once, each VAL weighted by it (not in the paper)
     int visibilityMapSize = 32;   // ... texels along each side of a cache's map
     bool occlusionCells = true;   // ... against the VALs of 5 cells of the unit disk (not in the paper; lightskin.h)
     bool occluderLight = true;    // ... an occluder's own reflected light is not removed (not in the paper)

@@ -13,19 +13,18 @@
 // through its centre hits first, from the cache lifted `lift` off its surface: the distance t and
 // the hit's geometric normal turned towards the cache (the plane of what it hit), or a miss.
 //
-// A VAL at v (distance r from the lifted cache) is hidden when either holds for the four texels
-// around its direction (the bilinear neighbours):
-//  - it lies beyond all of their hits: r > max t (1 + kVisibilityMapRelative) + lift;
-//  - it lies behind all of their planes, each by more than kVisibilityMapRelative t + lift.
-// The first is the shadow-map test with the largest of the neighbours' depths, which cannot shadow a
-// lit surface the texels see (a VAL on it lies within their range of depths); the second is exact for
-// an occluder that is one plane across the four texels, however grazing (a wall beside the cache:
-// its depth changes fast from texel to texel, its plane does not). Where the neighbours see
-// different surfaces with open space behind the nearer one (a silhouette) neither holds and the VAL
-// counts as seen: the maps err towards light at silhouettes, within one texel of them, and are exact
-// behind closed walls. A convex surface seen from the cache (a VAL on it lies behind its neighbours'
-// tangent planes by s^2 / 2R, s the texel's footprint, R the radius of curvature) is shadowed only
-// where s^2 / 2R exceeds the margin.
+// A VAL at v is judged by the four texels around its direction (the bilinear neighbours), each
+// against the plane its ray hit (visibilityMapTexelVerdict): the VAL lies behind that plane (2:
+// hidden), on it near the hit (1: the texel may see the VAL's own surface), or anywhere else (0:
+// nothing the texel saw stands in the way). Planes, not depths: a wall seen at a slant is exact
+// (its depth changes fast from texel to texel, its plane does not), and a surface the VAL lies on
+// or in front of never shadows it (a concave corner, the inside of a sphere). A texel's 0 or 1 is
+// cut (visibilityMapCut) when another texel puts the VAL behind its plane and the first texel's hit
+// lies in front of that plane: its view stays on the cache's side of the wall (the floor beyond a
+// wall's foot, coplanar with the floor behind the wall; the corner where wall, floor and the next
+// wall meet). A cut texel counts as seeing the VAL only if an uncut one sees its surface. The four
+// shares are weighted bilinearly. The maps err within about a texel of a silhouette, in both
+// directions (tests/cpu/test_traced_visibility.cpp measures how often, per scene).
 #ifndef VPLGI_SHARED_LIGHTSKIN_VISIBILITY_H
 #define VPLGI_SHARED_LIGHTSKIN_VISIBILITY_H
 #include "compat.h"
@@ -33,7 +32,7 @@
 VPLGI_SHARED_BEGIN
 
 VPLGI_CONST float kVisibilityMapMiss = 1e30f;      // a texel's distance when its ray hit nothing
-VPLGI_CONST float kVisibilityMapRelative = 0.002f; // the depth and plane margins, relative to the texel's distance
+VPLGI_CONST float kVisibilityMapRelative = 0.002f; // the plane margin, relative to the texel's distance
 
 // Direction in the map's frame (z along the cache normal; any length) -> [0, 1]^2; a direction below
 // the cache's plane goes to the rim above it (z taken as 0), straight down to the centre.
@@ -71,10 +70,10 @@ VPLGI_FUNC vec2 visibilityMapBilinear(vec2 uv, ivec2 first, int size)
 }
 
 // What one texel says of a VAL at `val` (origin the lifted cache; the texel's world direction, its
-// distance t, its hit's normal facing the cache): 0 nothing (a miss), 1 the VAL lies on the hit's
-// plane (the surface the texel sees may be the VAL's), 2 it lies behind that plane, 3 it lies beyond
-// the hit and in front of its plane (hidden unless a neighbour sees the VAL's surface: a concave
-// corner, where the neighbour sees the floor in front of the wall the VAL is on).
+// distance t, its hit's normal facing the cache): 2 the VAL lies behind the hit's plane, 1 on it
+// within about the texel's footprint of the hit (pi / size across at distance t, stretched by the
+// slant; not a coplanar surface further on, such as the floor of the next room), 0 otherwise or
+// for a miss.
 VPLGI_FUNC int visibilityMapTexelVerdict(vec3 origin, vec3 val, float lift, int size, vec3 direction, float t,
                                          vec3 normal)
 {
@@ -82,13 +81,9 @@ VPLGI_FUNC int visibilityMapTexelVerdict(vec3 origin, vec3 val, float lift, int 
     float margin = kVisibilityMapRelative * t + lift;
     float height = dot(normal, val - (origin + t * direction)); // above the hit's plane, towards the cache
     if (height < -margin) return 2;
-    // On the plane: the texel sees the VAL's surface only if the VAL lies within about its footprint
-    // there (pi / size across at distance t, stretched by the slant), not on a coplanar surface
-    // further on (the floor of the next room, behind a wall).
     vec3 hit = origin + t * direction;
     float footprint = 2.0f * t * (3.14159265f / float(size)) / max(abs(dot(normal, direction)), 0.05f);
-    if (height <= margin) return length(val - hit) <= footprint ? 1 : 3;
-    return length(val - origin) > t * (1.0f + kVisibilityMapRelative) + lift ? 3 : 0;
+    return height <= margin && length(val - hit) <= footprint ? 1 : 0;
 }
 
 // Whether texel j's hit lies in front of (or on) texel i's plane, on the cache's side; for a miss,
@@ -114,14 +109,13 @@ VPLGI_FUNC bool visibilityMapCut(vec3 origin, float lift, vec3 dJ, float tJ, int
            (r3 == 2 && visibilityMapHitInFront(origin, lift, d3, t3, n3, dJ, tJ));
 }
 
-// One texel's share: its verdict r, whether it is cut off (visibilityMapCut), and whether any
-// texel that is not cut sees the VAL's surface (verdict 1). Clear up to its hit (0) or seeing the
-// VAL's plane (1), not cut: 1. Behind its plane (2): 0. Beyond its hit off its plane (3), or cut
-// off: 1 only if a neighbour sees the VAL's surface (a concave corner).
+// One texel's share: its verdict, whether it is cut off (visibilityMapCut), and whether any texel
+// that is not cut sees the VAL's surface (verdict 1). Behind its plane: 0; otherwise 1, unless it is
+// cut and no uncut texel sees the VAL's surface.
 VPLGI_FUNC float visibilityMapTexelVisible(int verdict, bool cut, bool seenAny)
 {
-    if ((verdict == 0 || verdict == 1) && !cut) return 1.0f;
     if (verdict == 2) return 0.0f;
+    if (!cut) return 1.0f;
     return seenAny ? 1.0f : 0.0f;
 }
 

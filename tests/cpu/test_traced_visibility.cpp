@@ -131,18 +131,19 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
     // points, each facing the cache and in front of it: the pairs that carry light). "Lit but
     // blocked" is the maps' error towards light, "shadowed but open" towards shadow, both within
     // about a texel of a silhouette; without the maps every blocked pair would be lit (100%). The
-    // bounds are about 2-3x the measured fractions (printed): lit but blocked 0.02 / 6.7 / 11.2 /
-    // 4.6 / 0.7% of the blocked pairs, shadowed but open 0.3 / 3.0 / 11.8 / 2.9 / 8.3% of the open
+    // bounds are about 2-3x the measured fractions (printed): lit but blocked 0.02 / 6.7 / 11.3 /
+    // 4.8 / 0.7% of the blocked pairs, shadowed but open 0.3 / 2.9 / 9.5 / 2.7 / 8.1% of the open
     // ones, on sealed / board / canyon / cornell / maze. In the sealed rooms the pairs from the lit
     // room to a cache of the closed one are all blocked, and none may count as lit (measured 0 of
     // 3808; before the rim and the cut view of a coplanar floor, glsl/shared/lightskin_visibility.h,
-    // 0.32% were).
+    // 0.32% were). Inside the furnace's sphere every pair is open and none may be shadowed (a concave
+    // tessellated surface: each VAL lies in front of the planes the texels see; measured 0).
     struct Bound {
         const char* scene;
         double litBlocked, shadowedOpen;
     };
     const Bound bounds[] = {{"sealed", 0.0006, 0.008}, {"board", 0.14, 0.06}, {"canyon", 0.2, 0.24},
-                            {"cornell", 0.09, 0.08}, {"maze", 0.016, 0.17}};
+                            {"cornell", 0.09, 0.08}, {"maze", 0.016, 0.17}, {"furnace", 1.0, 1e-6}};
     const int size = 32;
     for (const Bound& bound : bounds) {
         const char* name = bound.scene;
@@ -184,8 +185,9 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
                                   : std::string()));
         INFO(name);
         REQUIRE(pairs > 10000);
-        REQUIRE(blocked > 1000);
-        CHECK(litBlocked / blocked < bound.litBlocked);
+        // The furnace (inside a sphere) blocks nothing: the check there is that nothing is shadowed.
+        REQUIRE((blocked > 1000 || std::string(name) == "furnace"));
+        CHECK(litBlocked / std::max(blocked, 1) < bound.litBlocked);
         CHECK(shadowedOpen / (pairs - blocked) < bound.shadowedOpen);
         if (std::string(name) == "sealed") {
             REQUIRE(crossing > 1000);
