@@ -127,7 +127,7 @@ std::vector<glm::uvec2> traceLightCacheVisibilityMaps(const RayScene& rays, cons
 }
 
 float lightCacheVisibilityMapVisibility(const std::vector<glm::uvec2>& maps, int size, const LightCache& cache,
-                                        std::size_t index, glm::vec3 val, float lift)
+                                        std::size_t index, glm::vec3 val, glm::vec3 valNormal, float lift)
 {
     const glm::mat3 frame = shared::occlusionFrame(cache.normal);
     const glm::vec3 origin = cache.position + lift * cache.normal;
@@ -146,7 +146,7 @@ float lightCacheVisibilityMapVisibility(const std::vector<glm::uvec2>& maps, int
         t[k] = glm::uintBitsToFloat(record.x);
         n[k] = shared::octDecode(glm::unpackSnorm2x16(record.y));
     }
-    return shared::visibilityMapVisibility(origin, val, lift, size, shared::visibilityMapBilinear(uv, first, size), d[0],
+    return shared::visibilityMapVisibility(origin, val, valNormal, lift, size, shared::visibilityMapBilinear(uv, first, size), d[0],
                                            t[0], n[0], d[1], t[1], n[1], d[2], t[2], n[2], d[3], t[3], n[3]);
 }
 

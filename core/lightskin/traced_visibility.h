@@ -53,9 +53,10 @@ std::vector<glm::uvec2> traceLightCacheVisibilityMaps(const RayScene& rays, cons
 // How far the maps' rays start above the cache (and the margin of their verdicts): 1e-4 of the
 // scene's diagonal, the lift of traceCacheVisibility.
 float lightCacheVisibilityLift(const RayScene& rays);
-// The maps' visibility (0-1) of a VAL at `val` from cache `index`, as glsl/passes/lightskin_proxy.comp
-// takes it. A VAL below the lifted cache's tangent plane takes the map's rim.
+// The maps' visibility (0-1) of a VAL at `val` (unit geometric normal valNormal) from cache `index`,
+// as glsl/passes/lightskin_proxy.comp takes it. A VAL below the lifted cache's tangent plane takes
+// the map's rim.
 float lightCacheVisibilityMapVisibility(const std::vector<glm::uvec2>& maps, int size, const LightCache& cache,
-                                        std::size_t index, glm::vec3 val, float lift);
+                                        std::size_t index, glm::vec3 val, glm::vec3 valNormal, float lift);
 
 } // namespace vplgi

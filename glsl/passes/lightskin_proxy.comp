@@ -61,7 +61,7 @@ uniform float uVisibilityLift;    // the maps' rays start this far above the cac
 
 // The visibility of a VAL at xl from cache `cache` (lift the cache's lifted position, frame its
 // disk's), as glsl/shared/lightskin_visibility.h and core/lightskin/traced_visibility.cpp take it.
-float mapVisibility(int cache, vec3 origin, mat3 frame, vec3 xl)
+float mapVisibility(int cache, vec3 origin, mat3 frame, vec3 xl, vec3 nl)
 {
     // A VAL within the lift of the cache's plane takes the map's rim (visibilityMapFromLocal clamps z).
     vec3 local = transpose(frame) * (xl - origin);
@@ -79,7 +79,7 @@ float mapVisibility(int cache, vec3 origin, mat3 frame, vec3 xl)
         t[k] = uintBitsToFloat(record.x);
         n[k] = octDecode(unpackSnorm2x16(record.y));
     }
-    return visibilityMapVisibility(origin, xl, uVisibilityLift, size, visibilityMapBilinear(uv, first, size), d[0], t[0],
+    return visibilityMapVisibility(origin, xl, nl, uVisibilityLift, size, visibilityMapBilinear(uv, first, size), d[0], t[0],
                                    n[0], d[1], t[1], n[1], d[2], t[2], n[2], d[3], t[3], n[3]);
 }
 
@@ -137,7 +137,7 @@ void main()
         float formFactor = diskFormFactor(area, dot(nl, -toLight), dot(cn, toLight), d2);
         // Eq. (14)/(15) without the receiver's colour: Phi cos cos / (A + pi d^2) / P_VAL.
         // lightskin.visibilityMaps (ours): the VAL's light as far as the cache's map lets it through.
-        float visible = uVisibilityMaps != 0 ? mapVisibility(cache, cp + uVisibilityLift * cn, diskFrame, xl) : 1.0;
+        float visible = uVisibilityMaps != 0 ? mapVisibility(cache, cp + uVisibilityLift * cn, diskFrame, xl, nl) : 1.0;
         if (!(visible > 0.0)) continue;
         formFactor *= visible;
         vec3 radiance = flux * (formFactor / area) / selection;

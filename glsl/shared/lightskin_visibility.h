@@ -69,19 +69,25 @@ VPLGI_FUNC vec2 visibilityMapBilinear(vec2 uv, ivec2 first, int size)
     return clamp(uv * float(size) - vec2(0.5f) - vec2(first), vec2(0.0f), vec2(1.0f));
 }
 
-// What one texel says of a VAL at `val` (origin the lifted cache; the texel's world direction, its
-// distance t, its hit's normal facing the cache): 2 the VAL lies behind the hit's plane, 1 on it
+// What one texel says of a VAL at `val` with geometric normal `valNormal` (origin the lifted cache;
+// the texel's world direction, its distance t, its hit's normal facing the cache): 2 the VAL lies
+// behind the hit's plane (and not on the same convex surface), 1 on it
 // within about the texel's footprint of the hit (pi / size across at distance t, stretched by the
 // slant; not a coplanar surface further on, such as the floor of the next room), 0 otherwise or
 // for a miss.
-VPLGI_FUNC int visibilityMapTexelVerdict(vec3 origin, vec3 val, float lift, int size, vec3 direction, float t,
-                                         vec3 normal)
+VPLGI_FUNC int visibilityMapTexelVerdict(vec3 origin, vec3 val, vec3 valNormal, float lift, int size, vec3 direction,
+                                         float t, vec3 normal)
 {
     if (!(t < kVisibilityMapMiss)) return 0;
     float margin = kVisibilityMapRelative * t + lift;
-    float height = dot(normal, val - (origin + t * direction)); // above the hit's plane, towards the cache
-    if (height < -margin) return 2;
     vec3 hit = origin + t * direction;
+    float height = dot(normal, val - hit); // above the hit's plane, towards the cache
+    // A convex surface (a sphere, a column) puts a VAL on it below the tangent plane of a hit on it
+    // nearby, and the hit as far below the VAL's own plane (R(1 - cos phi) both ways); a VAL behind
+    // a wall lies below the wall's plane while the wall stands above the VAL's own plane.
+    float below = -dot(valNormal, hit - val);
+    bool convex = below > 0.5f * -height && below < 2.0f * -height && -height < 0.5f * length(val - hit);
+    if (height < -margin && !convex) return 2;
     float footprint = 2.0f * t * (3.14159265f / float(size)) / max(abs(dot(normal, direction)), 0.05f);
     return height <= margin && length(val - hit) <= footprint ? 1 : 0;
 }
@@ -121,14 +127,15 @@ VPLGI_FUNC float visibilityMapTexelVisible(int verdict, bool cut, bool seenAny)
 
 // The visibility of a VAL from the four texels around its direction: their shares weighted
 // bilinearly (f the position between the texel centres, 0-1 along x and y).
-VPLGI_FUNC float visibilityMapVisibility(vec3 origin, vec3 val, float lift, int size, vec2 f, vec3 d0, float t0, vec3 n0,
+VPLGI_FUNC float visibilityMapVisibility(vec3 origin, vec3 val, vec3 valNormal, float lift, int size, vec2 f, vec3 d0,
+                                         float t0, vec3 n0,
                                          vec3 d1, float t1, vec3 n1, vec3 d2, float t2, vec3 n2, vec3 d3, float t3,
                                          vec3 n3)
 {
-    int r0 = visibilityMapTexelVerdict(origin, val, lift, size, d0, t0, n0);
-    int r1 = visibilityMapTexelVerdict(origin, val, lift, size, d1, t1, n1);
-    int r2 = visibilityMapTexelVerdict(origin, val, lift, size, d2, t2, n2);
-    int r3 = visibilityMapTexelVerdict(origin, val, lift, size, d3, t3, n3);
+    int r0 = visibilityMapTexelVerdict(origin, val, valNormal, lift, size, d0, t0, n0);
+    int r1 = visibilityMapTexelVerdict(origin, val, valNormal, lift, size, d1, t1, n1);
+    int r2 = visibilityMapTexelVerdict(origin, val, valNormal, lift, size, d2, t2, n2);
+    int r3 = visibilityMapTexelVerdict(origin, val, valNormal, lift, size, d3, t3, n3);
     bool c0 = visibilityMapCut(origin, lift, d0, t0, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
     bool c1 = visibilityMapCut(origin, lift, d1, t1, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
     bool c2 = visibilityMapCut(origin, lift, d2, t2, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);

@@ -105,10 +105,10 @@ TEST_CASE("lightskin visibility maps: all, none and half of a ceiling of VALs", 
     int openWrong = 0, coveredWrong = 0, halfWrong = 0;
     double halfSum = 0.0;
     for (const TracedVAL& val : vals) {
-        openWrong += lightCacheVisibilityMapVisibility(openMaps, size, cache, 0, val.position, openLift) == 1.0f ? 0 : 1;
+        openWrong += lightCacheVisibilityMapVisibility(openMaps, size, cache, 0, val.position, val.normal, openLift) == 1.0f ? 0 : 1;
         coveredWrong +=
-            lightCacheVisibilityMapVisibility(coveredMaps, size, cache, 0, val.position, coveredLift) == 0.0f ? 0 : 1;
-        const float v = lightCacheVisibilityMapVisibility(halfMaps, size, cache, 0, val.position, halfLift);
+            lightCacheVisibilityMapVisibility(coveredMaps, size, cache, 0, val.position, val.normal, coveredLift) == 0.0f ? 0 : 1;
+        const float v = lightCacheVisibilityMapVisibility(halfMaps, size, cache, 0, val.position, val.normal, halfLift);
         halfSum += v;
         if (std::abs(val.position.x) > 0.35f) halfWrong += v == (val.position.x > 0.0f ? 1.0f : 0.0f) ? 0 : 1;
     }
@@ -143,7 +143,7 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
         double litBlocked, shadowedOpen;
     };
     const Bound bounds[] = {{"sealed", 0.0006, 0.008}, {"board", 0.14, 0.06}, {"canyon", 0.2, 0.24},
-                            {"cornell", 0.09, 0.08}, {"maze", 0.016, 0.17}, {"furnace", 1.0, 1e-6}};
+                            {"cornell", 0.09, 0.08}, {"maze", 0.016, 0.17}, {"furnace", 1.0, 1e-6}, {"glossy", 1.0, 1.0}};
     const int size = 32;
     for (const Bound& bound : bounds) {
         const char* name = bound.scene;
@@ -166,7 +166,7 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
                 continue;
             ++pairs;
             const bool open = rays.visible(cache.position + lift * cache.normal, x + lift * n, Looker::None);
-            const float visibility = lightCacheVisibilityMapVisibility(maps, size, cache, c, x, lift);
+            const float visibility = lightCacheVisibilityMapVisibility(maps, size, cache, c, x, n, lift);
             blocked += open ? 0 : 1;
             litBlocked += open ? 0.0 : visibility;
             shadowedOpen += open ? 1.0 - visibility : 0.0;
