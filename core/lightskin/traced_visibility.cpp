@@ -140,14 +140,15 @@ float lightCacheVisibilityMapVisibility(const std::vector<glm::uvec2>& maps, int
     float t[4];
     for (int k = 0; k < 4; ++k) {
         const int x = std::min(first.x + (k & 1), size - 1), y = std::min(first.y + (k >> 1), size - 1);
-        const glm::uvec2 record =
-            maps[index * static_cast<std::size_t>(size) * static_cast<std::size_t>(size) + static_cast<std::size_t>(y * size + x)];
+        const glm::uvec2 record = maps[index * static_cast<std::size_t>(size) * static_cast<std::size_t>(size) +
+                                       static_cast<std::size_t>(y * size + x)];
         d[k] = frame * shared::visibilityMapTexelDirection(x, y, size);
         t[k] = glm::uintBitsToFloat(record.x);
         n[k] = shared::octDecode(glm::unpackSnorm2x16(record.y));
     }
-    return shared::visibilityMapVisibility(origin, val, valNormal, lift, size, shared::visibilityMapBilinear(uv, first, size), d[0],
-                                           t[0], n[0], d[1], t[1], n[1], d[2], t[2], n[2], d[3], t[3], n[3]);
+    return shared::visibilityMapVisibility(origin, val, valNormal, lift, size,
+                                           shared::visibilityMapBilinear(uv, first, size), d[0], t[0], n[0], d[1], t[1],
+                                           n[1], d[2], t[2], n[2], d[3], t[3], n[3]);
 }
 
 } // namespace vplgi

@@ -39,8 +39,7 @@ std::vector<float> traceCacheVisibility(const RayScene& rays, const std::vector<
 // radius `radius`: 16 rays per cache from kLightCacheReachLift radius above it, along
 // lightCacheReachDirection, each hit's distance (in the tangent plane for the azimuths) floored to
 // 1/255 of the radius. Any surface stops a ray, from either side. Deterministic; not in the paper.
-std::vector<glm::uvec4> traceLightCacheReach(const RayScene& rays, const std::vector<LightCache>& caches,
-                                             float radius);
+std::vector<glm::uvec4> traceLightCacheReach(const RayScene& rays, const std::vector<LightCache>& caches, float radius);
 
 // LightSkin's visibility maps (glsl/shared/lightskin_visibility.h; not in the paper): for each cache,
 // size x size texels over its hemisphere, cache after cache, row after row; texel (x, y) is

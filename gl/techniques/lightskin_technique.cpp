@@ -70,11 +70,11 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
             "indirect occlusion: by the visibility maps (the default), or with lightskin.visibilityMaps=false by double "
             "projection (section 3)");
     v.field("lightskin.occlusionCells", occlusionCells,
-            "occlusion per cell of the cache's unit disk (its VALs' footprint in 5 cells; not in the paper); "
-            "false: one sphere per proxy (the paper)");
+            "with lightskin.visibilityMaps=false, the double projection per cell of the cache's unit disk (its VALs' "
+            "footprint in 5 cells; not in the paper); false: one sphere per proxy (the paper)");
     v.field("lightskin.occluderLight", occluderLight,
-            "with occlusion cells, an occluder that the light reaches (the RSM sees it) blocks only what lies behind "
-            "it, not the light it reflects itself towards the cache (not in the paper)");
+            "with the double projection's cells, an occluder that the light reaches (the RSM sees it) blocks only what "
+            "lies behind it, not the light it reflects itself towards the cache (not in the paper)");
     v.field("lightskin.tracedOcclusion", tracedOcclusion,
             "each cache's visibility traced with Embree instead (the reference for the double projection; "
             "CPU, not real-time; not in the paper)");

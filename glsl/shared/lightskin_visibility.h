@@ -105,9 +105,9 @@ VPLGI_FUNC bool visibilityMapHitInFront(vec3 origin, float lift, vec3 dI, float 
 // front of that plane, so j's clear path stays on the cache's side of a surface that lies between
 // the cache and the VAL (the floor beyond a wall's foot, coplanar with the floor behind the wall;
 // the corner where the wall meets the floor and the next wall).
-VPLGI_FUNC bool visibilityMapCut(vec3 origin, float lift, vec3 dJ, float tJ, int r0, vec3 d0, float t0, vec3 n0,
-                                 int r1, vec3 d1, float t1, vec3 n1, int r2, vec3 d2, float t2, vec3 n2, int r3,
-                                 vec3 d3, float t3, vec3 n3)
+VPLGI_FUNC bool visibilityMapCut(vec3 origin, float lift, vec3 dJ, float tJ, int r0, vec3 d0, float t0, vec3 n0, int r1,
+                                 vec3 d1, float t1, vec3 n1, int r2, vec3 d2, float t2, vec3 n2, int r3, vec3 d3,
+                                 float t3, vec3 n3)
 {
     return (r0 == 2 && visibilityMapHitInFront(origin, lift, d0, t0, n0, dJ, tJ)) ||
            (r1 == 2 && visibilityMapHitInFront(origin, lift, d1, t1, n1, dJ, tJ)) ||
@@ -128,9 +128,8 @@ VPLGI_FUNC float visibilityMapTexelVisible(int verdict, bool cut, bool seenAny)
 // The visibility of a VAL from the four texels around its direction: their shares weighted
 // bilinearly (f the position between the texel centres, 0-1 along x and y).
 VPLGI_FUNC float visibilityMapVisibility(vec3 origin, vec3 val, vec3 valNormal, float lift, int size, vec2 f, vec3 d0,
-                                         float t0, vec3 n0,
-                                         vec3 d1, float t1, vec3 n1, vec3 d2, float t2, vec3 n2, vec3 d3, float t3,
-                                         vec3 n3)
+                                         float t0, vec3 n0, vec3 d1, float t1, vec3 n1, vec3 d2, float t2, vec3 n2,
+                                         vec3 d3, float t3, vec3 n3)
 {
     int r0 = visibilityMapTexelVerdict(origin, val, valNormal, lift, size, d0, t0, n0);
     int r1 = visibilityMapTexelVerdict(origin, val, valNormal, lift, size, d1, t1, n1);

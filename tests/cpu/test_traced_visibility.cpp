@@ -30,7 +30,8 @@ std::vector<TracedVAL> ceilingVALs()
     for (int i = 0; i < 40; ++i)
         for (int k = 0; k < 40; ++k) {
             TracedVAL val;
-            val.position = glm::vec3(-1.95f + 0.1f * static_cast<float>(i), 2.0f, -1.95f + 0.1f * static_cast<float>(k));
+            val.position =
+                glm::vec3(-1.95f + 0.1f * static_cast<float>(i), 2.0f, -1.95f + 0.1f * static_cast<float>(k));
             val.normal = glm::vec3(0.0f, -1.0f, 0.0f);
             val.area = 0.01f;
             val.power = 1.0f;
@@ -65,14 +66,15 @@ TEST_CASE("lightskin traced visibility: all, none and half of a ceiling of VALs"
     const std::vector<TracedVAL> vals = ceilingVALs();
     const int samples = 4096;
 
-    const Scene open = blockerScene(0.0f, 0.0f), covered = blockerScene(-10.0f, 10.0f), half = blockerScene(-10.0f, 0.0f);
+    const Scene open = blockerScene(0.0f, 0.0f), covered = blockerScene(-10.0f, 10.0f),
+                half = blockerScene(-10.0f, 0.0f);
     const RayScene openRays(open), coveredRays(covered), halfRays(half);
     const std::vector<float> all = traceCacheVisibility(openRays, caches, vals, samples, 1);
     const std::vector<float> none = traceCacheVisibility(coveredRays, caches, vals, samples, 1);
     const std::vector<float> halves = traceCacheVisibility(halfRays, caches, vals, samples, 1);
-    MEASURED("traced visibility of a ceiling of VALs: open " << all[0] << ", covered " << none[0] << ", half covered "
-             << halves[0] << " (0.5 expected), the cache facing +x behind the half blocker " << halves[1]
-             << " (1 expected)");
+    MEASURED("traced visibility of a ceiling of VALs: open "
+             << all[0] << ", covered " << none[0] << ", half covered " << halves[0]
+             << " (0.5 expected), the cache facing +x behind the half blocker " << halves[1] << " (1 expected)");
     CHECK(all[0] == 1.0f);
     CHECK(none[0] == 0.0f);
     // 4096 draws: the standard error of a fraction 0.5 is 0.0078; the bound is 3 of them.
@@ -95,7 +97,8 @@ TEST_CASE("lightskin visibility maps: all, none and half of a ceiling of VALs", 
     const std::vector<LightCache> caches{cache};
     const std::vector<TracedVAL> vals = ceilingVALs();
     const int size = 32;
-    const Scene open = blockerScene(0.0f, 0.0f), covered = blockerScene(-10.0f, 10.0f), half = blockerScene(-10.0f, 0.0f);
+    const Scene open = blockerScene(0.0f, 0.0f), covered = blockerScene(-10.0f, 10.0f),
+                half = blockerScene(-10.0f, 0.0f);
     const RayScene openRays(open), coveredRays(covered), halfRays(half);
     const std::vector<glm::uvec2> openMaps = traceLightCacheVisibilityMaps(openRays, caches, size),
                                   coveredMaps = traceLightCacheVisibilityMaps(coveredRays, caches, size),
@@ -105,17 +108,21 @@ TEST_CASE("lightskin visibility maps: all, none and half of a ceiling of VALs", 
     int openWrong = 0, coveredWrong = 0, halfWrong = 0;
     double halfSum = 0.0;
     for (const TracedVAL& val : vals) {
-        openWrong += lightCacheVisibilityMapVisibility(openMaps, size, cache, 0, val.position, val.normal, openLift) == 1.0f ? 0 : 1;
-        coveredWrong +=
-            lightCacheVisibilityMapVisibility(coveredMaps, size, cache, 0, val.position, val.normal, coveredLift) == 0.0f ? 0 : 1;
+        openWrong +=
+            lightCacheVisibilityMapVisibility(openMaps, size, cache, 0, val.position, val.normal, openLift) == 1.0f ? 0
+                                                                                                                    : 1;
+        coveredWrong += lightCacheVisibilityMapVisibility(coveredMaps, size, cache, 0, val.position, val.normal,
+                                                          coveredLift) == 0.0f
+                            ? 0
+                            : 1;
         const float v = lightCacheVisibilityMapVisibility(halfMaps, size, cache, 0, val.position, val.normal, halfLift);
         halfSum += v;
         if (std::abs(val.position.x) > 0.35f) halfWrong += v == (val.position.x > 0.0f ? 1.0f : 0.0f) ? 0 : 1;
     }
     const double halfMean = halfSum / static_cast<double>(vals.size());
-    MEASURED("visibility maps of a ceiling of VALs: wrong when open " << openWrong << ", when covered " << coveredWrong
-             << ", half covered (beyond a texel of the edge) " << halfWrong << "; mean visibility half covered "
-             << halfMean << " (0.5 expected)");
+    MEASURED("visibility maps of a ceiling of VALs: wrong when open "
+             << openWrong << ", when covered " << coveredWrong << ", half covered (beyond a texel of the edge) "
+             << halfWrong << "; mean visibility half covered " << halfMean << " (0.5 expected)");
     CHECK(openWrong == 0);
     CHECK(coveredWrong == 0);
     CHECK(halfWrong == 0);
@@ -132,18 +139,20 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
     // blocked" is the maps' error towards light, "shadowed but open" towards shadow, both within
     // about a texel of a silhouette; without the maps every blocked pair would be lit (100%). The
     // bounds are about 2-3x the measured fractions (printed): lit but blocked 0.02 / 6.7 / 11.3 /
-    // 4.8 / 0.7% of the blocked pairs, shadowed but open 0.3 / 2.9 / 9.5 / 2.7 / 8.1% of the open
-    // ones, on sealed / board / canyon / cornell / maze. In the sealed rooms the pairs from the lit
-    // room to a cache of the closed one are all blocked, and none may count as lit (measured 0 of
-    // 3808; before the rim and the cut view of a coplanar floor, glsl/shared/lightskin_visibility.h,
-    // 0.32% were). Inside the furnace's sphere every pair is open and none may be shadowed (a concave
-    // tessellated surface: each VAL lies in front of the planes the texels see; measured 0).
+    // 4.8 / 0.7 / 14.8% of the blocked pairs, shadowed but open 0.3 / 2.9 / 9.3 / 2.6 / 6.7 / 2.1% of
+    // the open ones, on sealed / board / canyon / cornell / maze / glossy (its spheres and pedestal:
+    // 2.9% shadowed before a VAL on the same convex surface as a hit was exempted). In the sealed rooms the pairs from
+    // the lit room to a cache of the closed one are all blocked, and none may count as lit (measured 0 of 3808; before
+    // the rim and the cut view of a coplanar floor, glsl/shared/lightskin_visibility.h, 0.32% were). Inside the
+    // furnace's sphere every pair is open and none may be shadowed (a concave tessellated surface: each VAL lies in
+    // front of the planes the texels see; measured 0).
     struct Bound {
         const char* scene;
         double litBlocked, shadowedOpen;
     };
     const Bound bounds[] = {{"sealed", 0.0006, 0.008}, {"board", 0.14, 0.06}, {"canyon", 0.2, 0.24},
-                            {"cornell", 0.09, 0.08}, {"maze", 0.016, 0.17}, {"furnace", 1.0, 1e-6}, {"glossy", 1.0, 1.0}};
+                            {"cornell", 0.09, 0.08},   {"maze", 0.016, 0.17}, {"furnace", 1.0, 1e-6},
+                            {"glossy", 0.3, 0.05}};
     const int size = 32;
     for (const Bound& bound : bounds) {
         const char* name = bound.scene;
@@ -177,12 +186,13 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
             }
         }
         MEASURED("visibility maps " << size << "^2, " << name << ": " << set.caches.size() << " caches, " << pairs
-                 << " facing pairs, " << blocked << " blocked; lit but blocked " << litBlocked << " ("
-                 << 100.0 * litBlocked / std::max(blocked, 1) << "% of the blocked), shadowed but open " << shadowedOpen
-                 << " (" << 100.0 * shadowedOpen / std::max(pairs - blocked, 1) << "% of the open)"
-                 << (crossing > 0 ? ", lit room to closed room: " + std::to_string(crossing) + " pairs, lit " +
-                                        std::to_string(crossingLit)
-                                  : std::string()));
+                                    << " facing pairs, " << blocked << " blocked; lit but blocked " << litBlocked
+                                    << " (" << 100.0 * litBlocked / std::max(blocked, 1)
+                                    << "% of the blocked), shadowed but open " << shadowedOpen << " ("
+                                    << 100.0 * shadowedOpen / std::max(pairs - blocked, 1) << "% of the open)"
+                                    << (crossing > 0 ? ", lit room to closed room: " + std::to_string(crossing) +
+                                                           " pairs, lit " + std::to_string(crossingLit)
+                                                     : std::string()));
         INFO(name);
         REQUIRE(pairs > 10000);
         // The furnace (inside a sphere) blocks nothing: the check there is that nothing is shadowed.
@@ -195,4 +205,3 @@ TEST_CASE("lightskin visibility maps agree with Embree per (cache, VAL) pair", "
         }
     }
 }
-
