@@ -159,18 +159,21 @@ void main()
         sums[11] += wg * v.x; sums[12] += wg * v.y; sums[13] += wg * v.z;
         sums[14] += wg * v.x * v.x; sums[15] += wg * v.y * v.y; sums[16] += wg * v.z * v.z;
         sums[17] += radiance.r * lobe; sums[18] += radiance.g * lobe; sums[19] += radiance.b * lobe;
-        int at = kProxyCellFirst + occlusionCell(toLight, diskFrame) * kProxyCellSums;
-        float radianceLuminance = luminanceRec709(radiance);
-        vec2 disk = vec2(dot(toLight, diskFrame[0]), dot(toLight, diskFrame[1]));
-        float distance = sqrt(d2);
-        sums[at] += wd;
-        sums[at + 1] += wd * disk.x; sums[at + 2] += wd * disk.y;
-        sums[at + 3] += wd * disk.x * disk.x; sums[at + 4] += wd * disk.y * disk.y;
-        sums[at + 5] += wd * v.x; sums[at + 6] += wd * v.y; sums[at + 7] += wd * v.z;
-        sums[at + 8] += wd * distance;
-        sums[at + 9] += wd * d2;
-        sums[at + 10] += radianceLuminance;
-        sums[at + 11] += radianceLuminance * lobe; // cos^k theta_e: the glossy proxy's share
+        // The occlusion cells' sums feed only the double projection's targets: none with the maps.
+        if (uVisibilityMaps == 0) {
+            int at = kProxyCellFirst + occlusionCell(toLight, diskFrame) * kProxyCellSums;
+            float radianceLuminance = luminanceRec709(radiance);
+            vec2 disk = vec2(dot(toLight, diskFrame[0]), dot(toLight, diskFrame[1]));
+            float distance = sqrt(d2);
+            sums[at] += wd;
+            sums[at + 1] += wd * disk.x; sums[at + 2] += wd * disk.y;
+            sums[at + 3] += wd * disk.x * disk.x; sums[at + 4] += wd * disk.y * disk.y;
+            sums[at + 5] += wd * v.x; sums[at + 6] += wd * v.y; sums[at + 7] += wd * v.z;
+            sums[at + 8] += wd * distance;
+            sums[at + 9] += wd * d2;
+            sums[at + 10] += radianceLuminance;
+            sums[at + 11] += radianceLuminance * lobe; // cos^k theta_e: the glossy proxy's share
+        }
     }
     for (int s = 0; s < kProxySumCount; ++s) sSums[s][lane] = sums[s];
     barrier();
