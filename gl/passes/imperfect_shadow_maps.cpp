@@ -14,6 +14,7 @@
 #include "core/util/params.h"
 #include "core/util/power_of_two.h"
 #include "glsl/shared/bindings.h"
+#include "glsl/shared/ism.h"
 #include "glsl/shared/normals.h"
 #include "glsl/shared/vpl.h"
 
@@ -61,9 +62,20 @@ void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
     v.field(prefix + "OwnRadius", ownRadius, 0.0f, 16.0f,
             "points nearer to a light with extent (a VSGL) than this x its radius r_i are not splatted into its map: "
             "its own footprint does not shadow it; 0 = every point (ours)");
+    v.field(prefix + "OwnSurfaceOnly", ownSurfaceOnly,
+            "of the points within ownRadius of a light with extent, leave out only those of its own surface (facing "
+            "its way, near its tangent plane): the walls beside it still shadow (ours)");
     v.field(prefix + "Stratified", stratified,
             "each light's run of points per map is a stratified sample of the scene's area (every triangle gets its "
             "share within one point); false: i.i.d. points (ours)");
+    v.field(prefix + "Planes", planes,
+            "each texel keeps the plane of the point that won it and the lookup judges a receiver by the planes of "
+            "the four texels around its direction (the rule of LightSkin's visibility maps) instead of one depth "
+            "with depthBias and normalOffset (ours)");
+    v.field(prefix + "GapReach", gapReach, 0, 4,
+            "with planes: a texel whose two opposite neighbours up to this many texels away saw one plane that its ray "
+            "crosses before its own hit looked through a gap between splats and takes that plane; 0 = no gap filling "
+            "(ours)");
     v.field(prefix + "Seed", seed, "random stream of the surface points");
 }
 
@@ -94,6 +106,31 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
 
     mMaps = makeParaboloidMapAtlas("imperfect shadow maps", params.mapSize, maxLights, params.pullPushLevels + 1,
                                    mLayout);
+    if (params.planes) {
+        gl::TextureDesc desc;
+        desc.target = GL_TEXTURE_2D_ARRAY;
+        desc.format = GL_R32UI;
+        desc.width = mLayout.layerSize;
+        desc.height = mLayout.layerSize;
+        desc.layers = mLayout.layers;
+        desc.levels = 1;
+        while (glGetError() != GL_NO_ERROR) {
+        }
+        mNormals = gl::Texture("imperfect shadow maps' normals", desc);
+        require(glGetError() != GL_OUT_OF_MEMORY, name + "the driver could not allocate the planes' normals (" +
+                                                      std::to_string(static_cast<long long>(mLayout.memoryMiB + 0.5)) +
+                                                      " MiB)");
+        const std::uint32_t none = shared::kISMNoNormal;
+        glClearTexImage(mNormals.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+        if (params.gapReach > 0) {
+            mGapNormals = gl::Texture("imperfect shadow maps' gap filling: normals", desc);
+            desc.format = GL_R32F;
+            mGapMaps = gl::Texture("imperfect shadow maps' gap filling: distances", desc);
+            require(glGetError() != GL_OUT_OF_MEMORY,
+                    name + "the driver could not allocate the gap filling's copies (" +
+                        std::to_string(static_cast<long long>(2 * mLayout.memoryMiB + 0.5)) + " MiB)");
+        }
+    }
 
     gl::SamplerDesc samplerDesc;
     samplerDesc.minFilter = GL_NEAREST;
@@ -108,6 +145,7 @@ void ImperfectShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
                          {"ISM_POINTS_PER_INVOCATION=" + std::to_string(kSplatPointsPerInvocation)});
     mPull = ComputePass(shaders, "ISM pull", "passes/ism_pull.comp");
     mPush = ComputePass(shaders, "ISM push", "passes/ism_push.comp");
+    mGaps = ComputePass(shaders, "ISM gaps", "passes/ism_gaps.comp");
 }
 
 void ImperfectShadowMaps::setScene(const Scene& scene)
@@ -123,6 +161,8 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     // A / pointsPerMap square metres, the disk of that area has radius sqrt(A / (pi pointsPerMap)).
     mSplatRadius = mParams.splatScale *
                    static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mParams.pointsPerMap)));
+    // As LightSkin's lightCacheVisibilityLift: an absolute margin far below any wall's thickness.
+    mLift = 1e-4f * glm::length(scene.worldBounds().extent());
 }
 
 void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, int validVec4,
@@ -159,31 +199,81 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uSplatMaxExtent", mParams.splatMaxExtent);
     splat.set("uRadius2Vec4", radius2Vec4);
     splat.set("uOwnRadius", mParams.ownRadius);
-    // Pull reads the splat next; without pull-push the shading pass (or a test's readback) does.
+    splat.set("uPlanes", mParams.planes ? 1 : 0);
+    splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);
+    splat.set("uPass", 0);
+    // Pull reads the splat next (or the normals' pass); without pull-push the shading pass (or a
+    // test's readback) does.
     const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;
     mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
                     NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
+    if (mParams.planes) {
+        // The same splats again: each writes its normal where its distance won (glsl/shared/ism.h, planes).
+        glBindImageTexture(static_cast<GLuint>(shared::kImageISMNormals), mNormals.id(), 0, GL_TRUE, 0,
+                           GL_READ_WRITE, GL_R32UI);
+        splat.set("uPass", 1);
+        mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
+                        NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
+        if (mParams.gapReach > 0) fillGaps(lights, count, strideVec4, timer);
+    }
 
     fillHoles(count, timer);
 }
 
+template <typename F> void ImperfectShadowMaps::forEachTileRectangle(int count, F f) const
+{
+    // Tiles 0 .. count-1 fill whole layers, then whole rows of the next layer, then part of one row.
+    const int n = mLayout.tilesPerRow, perLayer = n * n;
+    const int layers = count / perLayer, rows = (count % perLayer) / n, rest = count % n;
+    if (layers > 0) f(0, 0, 0, n, n, layers);
+    if (rows > 0) f(0, 0, layers, n, rows, 1);
+    if (rest > 0) f(0, rows, layers, rest, 1, 1);
+}
+
 void ImperfectShadowMaps::clearMaps(int count, gl::PassTimer* timer) const
 {
-    // Tiles 0 .. count-1 fill whole layers, then whole rows of the next layer, then part of one row:
-    // at most three rectangles. On llvmpipe this took 1 ms for 1024 maps of 64^2, a clearing kernel 37 ms.
+    // At most three rectangles. On llvmpipe this took 1 ms for 1024 maps of 64^2, a clearing kernel 37 ms.
     std::optional<gl::PassTimer::Scope> scope;
     if (timer) scope.emplace(*timer, "ISM clear");
     const float none = shared::kVPLNoOccluder;
-    const int n = mLayout.tilesPerRow, size = mParams.mapSize, perLayer = n * n;
-    const int layers = count / perLayer, rows = (count % perLayer) / n, rest = count % n;
-    auto clear = [&](int x, int y, int layer, int width, int height, int depth) {
-        if (width > 0 && height > 0 && depth > 0)
-            glClearTexSubImage(mMaps.id(), 0, x * size, y * size, layer, width * size, height * size, depth, GL_RED,
-                               GL_FLOAT, &none);
-    };
-    clear(0, 0, 0, n, n, layers);
-    clear(0, 0, layers, n, rows, 1);
-    clear(0, rows, layers, rest, 1, 1);
+    const int size = mParams.mapSize;
+    const std::uint32_t noNormal = shared::kISMNoNormal;
+    forEachTileRectangle(count, [&](int x, int y, int layer, int width, int height, int depth) {
+        glClearTexSubImage(mMaps.id(), 0, x * size, y * size, layer, width * size, height * size, depth, GL_RED,
+                           GL_FLOAT, &none);
+        if (mParams.planes)
+            glClearTexSubImage(mNormals.id(), 0, x * size, y * size, layer, width * size, height * size, depth,
+                               GL_RED_INTEGER, GL_UNSIGNED_INT, &noNormal);
+    });
+}
+
+void ImperfectShadowMaps::fillGaps(const gl::Buffer& lights, int count, int strideVec4, gl::PassTimer* timer)
+{
+    bindMapsAsUint(shared::kImageISMMaps, mMaps, GL_READ_ONLY, 0);
+    glBindImageTexture(static_cast<GLuint>(shared::kImageISMNormals), mNormals.id(), 0, GL_TRUE, 0, GL_READ_ONLY,
+                       GL_R32UI);
+    bindMapsAsUint(shared::kImageISMGapDistances, mGapMaps, GL_WRITE_ONLY, 0);
+    glBindImageTexture(static_cast<GLuint>(shared::kImageISMGapNormals), mGapNormals.id(), 0, GL_TRUE, 0,
+                       GL_WRITE_ONLY, GL_R32UI);
+    bindStorageBuffer(shared::kBindingISMLights, lights);
+    const gl::Program& gaps = mGaps.program();
+    gaps.set("uCount", count);
+    gaps.set("uStride", strideVec4);
+    gaps.set("uMapSize", mParams.mapSize);
+    gaps.set("uTilesPerRow", mLayout.tilesPerRow);
+    gaps.set("uReach", mParams.gapReach);
+    gaps.set("uLift", mLift);
+    mGaps.dispatch(glm::ivec3(mParams.mapSize * mParams.mapSize, count, 1), NextRead::TextureReadback, timer);
+    // The copies back into the maps (glCopyImageSubData after the barrier for texture updates).
+    std::optional<gl::PassTimer::Scope> scope;
+    if (timer) scope.emplace(*timer, "ISM gaps copy");
+    const int size = mParams.mapSize;
+    forEachTileRectangle(count, [&](int x, int y, int layer, int width, int height, int depth) {
+        glCopyImageSubData(mGapMaps.id(), GL_TEXTURE_2D_ARRAY, 0, x * size, y * size, layer, mMaps.id(),
+                           GL_TEXTURE_2D_ARRAY, 0, x * size, y * size, layer, width * size, height * size, depth);
+        glCopyImageSubData(mGapNormals.id(), GL_TEXTURE_2D_ARRAY, 0, x * size, y * size, layer, mNormals.id(),
+                           GL_TEXTURE_2D_ARRAY, 0, x * size, y * size, layer, width * size, height * size, depth);
+    });
 }
 
 void ImperfectShadowMaps::fillHoles(int count, gl::PassTimer* timer)
@@ -225,6 +315,13 @@ void ImperfectShadowMaps::bindForReading(const gl::Program& program) const
     program.set("uISMTilesPerRow", mLayout.tilesPerRow);
     program.set("uISMNormalOffset", mParams.normalOffset);
     program.set("uISMDepthBias", mParams.depthBias);
+    program.set("uISMPlanes", mParams.planes ? 1 : 0);
+    program.set("uISMLift", mLift);
+    program.set("uISMOverhang", mSplatRadius);
+    if (mParams.planes) {
+        glBindTextureUnit(shared::kUnitISMNormals, mNormals.id());
+        glBindSampler(shared::kUnitISMNormals, mSampler.id());
+    }
 }
 
 } // namespace vplgi

@@ -72,6 +72,15 @@
 //  Cost: update() of 1024 lights x 8192 points at 64^2 took 175 ms on llvmpipe on an idle 2-core
 //  machine (splat 106, push 53, pull 14, clear 1 ms; 0.2-0.5 s while other builds shared it). The
 //  paper reports 8-12 ms for its AISMs on a 2011 GPU.
+//  Planes (`planes`, ours): the splat runs twice; the second pass writes, into a second r32ui atlas,
+//  the packed normal of the point whose distance won each texel, and the centre texel holds the
+//  distance to the point's plane along its central direction, as the disk's texels do. The lookup
+//  (glsl/lib/ism.glsl) then judges a receiver by the planes of the four texels around its direction
+//  (glsl/shared/plane_visibility.h, the rule LightSkin's visibility maps use) instead of one texel's
+//  depth with the relative depthBias and normalOffset, which it does not use. A texel without a normal
+//  (filled by pull-push) counts as a plane facing the light. Why: the relative bias let a receiver
+//  within 10% of its distance behind a wall count as lit (the sealed room's closed side along its
+//  joints); measured per pair and per image in docs/vsgl.md, "Imperfect shadow maps with planes".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB
@@ -112,11 +121,14 @@ struct ISMParams {
     float splatMaxExtent = 8.0f;     // a disk's bounding box is cut to this half-size [texels] (ours)
     bool stratified = true;          // each run of pointsPerMap points a stratified sample of the area (ours)
     float ownRadius = 1.0f;          // lights with extent: points within this x their radius are not splatted (ours)
+    bool ownSurfaceOnly = true;      // ... of those, only the light's own surface (ismOwnSurface) (ours)
+    bool planes = true;              // texels keep the winning point's plane; the lookup tests planes (ours)
+    int gapReach = 4;                // planes: gap filling from opposite neighbours up to this many texels away; 0 = none (ours)
     std::uint32_t seed = 1;          // the point set's random stream
 
     // Keys prefix + "Points", "PointsPerMap", "MapSize", "PullPushLevels", "PullPushDepthRange",
     // "DepthBias", "NormalOffset", "SplatScale", "SplatMaxExtent", "Stratified", "OwnRadius",
-    // "Seed" (prefix "vsgl.ism" gives "vsgl.ismPoints").
+    // "Planes", "Seed" (prefix "vsgl.ism" gives "vsgl.ismPoints").
     void visitParams(ParamVisitor& visitor, const std::string& prefix);
 };
 
@@ -144,17 +156,27 @@ public:
     const ISMParams& params() const { return mParams; }
     const ShadowAtlasLayout& layout() const { return mLayout; }
     const gl::Texture& maps() const { return mMaps; } // r32f 2D array, pullPushLevels + 1 levels
+    // With params.planes: r32ui 2D array in the maps' layout, level 0 only: the packed normal of each
+    // texel's winning point (glsl/shared/ism.h, ismPackNormal), kISMNoNormal where none won it.
+    const gl::Texture& normals() const { return mNormals; }
     const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal
     float splatRadius() const { return mSplatRadius; }   // after setScene
     int maxLights() const { return mMaxLights; }
 
 private:
-    void clearMaps(int count, gl::PassTimer* timer) const; // level 0 of lights 0 .. count-1: no occluder
+    void clearMaps(int count, gl::PassTimer* timer) const; // level 0 of lights 0 .. count-1: no occluder (no normal)
+    void fillGaps(const gl::Buffer& lights, int count, int strideVec4, gl::PassTimer* timer);
+    // The (at most three) rectangles of the atlas that the tiles of lights 0 .. count-1 cover: f(x, y,
+    // layer, width, height, depth) in tiles.
+    template <typename F> void forEachTileRectangle(int count, F f) const;
 
     ISMParams mParams;
     int mMaxLights = 0;
     ShadowAtlasLayout mLayout;
     gl::Texture mMaps;
+    gl::Texture mNormals; // params.planes only
+    gl::Texture mGapMaps, mGapNormals; // params.planes && gapReach > 0: gap filling's output, copied back
+    float mLift = 0.0f;   // the plane rule's absolute margin [m]: 1e-4 x the scene's diagonal (after setScene)
     gl::Sampler mSampler;
     gl::Buffer mPoints;
     int mPointCount = 0;
@@ -162,6 +184,7 @@ private:
     ComputePass mSplat;
     ComputePass mPull;
     ComputePass mPush;
+    ComputePass mGaps;
 };
 
 } // namespace vplgi

@@ -2,7 +2,8 @@
 // Imperfect shadow maps (gl/passes/imperfect_shadow_maps.h): splats each light's run of scene
 // points into its paraboloid map, nearest distance wins: the texel of the point's direction, and with
 // uSplatRadius > 0 every texel whose centre lies in the image of the point's disk (the footprint
-// splat of glsl/shared/ism.h, ours). Invocation (j, light):
+// splat of glsl/shared/ism.h, ours); with uPlanes a second dispatch (uPass 1) writes the normal of
+// the point that won each texel (glsl/shared/ism.h, planes). Invocation (j, light):
 // points k = j * ISM_POINTS_PER_INVOCATION ... of the light's run, point (start + k) mod P of the point
 // set, start = light * uPointsPerMap mod P (several points per invocation share the light's frame:
 // 25% faster on llvmpipe than one each). The distance is
@@ -18,6 +19,7 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(binding = kImageISMMaps, r32ui) uniform uimage2DArray uMaps;
+layout(binding = kImageISMNormals, r32ui) uniform uimage2DArray uNormals; // uPass 1: the winners' packed normals
 
 struct ISMPoint {
     vec3 position;       // world [m]
@@ -42,7 +44,20 @@ uniform int uTilesPerRow;
 uniform float uSplatRadius;    // world radius of each point's disk [m]; 0: one-texel points
 uniform float uSplatMaxExtent;
 uniform int uRadius2Vec4;      // the record's vec4 whose w is the light's radius^2 [m^2]; -1: point lights
-uniform float uOwnRadius;      // points within this x the light's radius are not splatted // the disk's bounding box is cut to this half-size [texels]
+uniform float uOwnRadius;      // points within this x the light's radius are not splatted
+uniform int uOwnSurfaceOnly;   // 1: of the points within the own radius, only those of the light's own surface are left out
+uniform int uPlanes;           // 1: the centre texel holds the distance to the point's plane (glsl/shared/ism.h, planes)
+uniform int uPass;             // 0: distances (nearest wins); 1: normals where the point's distance won the texel
+
+// Pass 0: the nearest distance wins. Pass 1 (planes): where this point's distance is the texel's,
+// its packed normal, the smallest winning.
+void splatTexel(ivec3 texel, float distance, uint packedNormal)
+{
+    if (uPass == 0)
+        imageAtomicMin(uMaps, texel, floatBitsToUint(distance));
+    else if (imageLoad(uMaps, texel).r == floatBitsToUint(distance))
+        imageAtomicMin(uNormals, texel, packedNormal);
+}
 
 void main()
 {
@@ -64,12 +79,19 @@ void main()
         ivec3 texel = ismSplatTexel(light, positionValid.xyz, frame, point, uMapSize, uTilesPerRow);
         if (texel.x < 0) continue;
         float pointDistance = length(point - positionValid.xyz);
-        if (pointDistance < ownRadius) continue;
-        imageAtomicMin(uMaps, texel, floatBitsToUint(pointDistance));
-        if (!(uSplatRadius > 0.0)) continue;
+        vec3 worldNormal = octDecode(unpackSnorm2x16(record.normalSnorm2x16));
+        if (pointDistance < ownRadius &&
+            (uOwnSurfaceOnly == 0 || ismOwnSurface(point - positionValid.xyz, worldNormal, frame[2], ownRadius)))
+            continue;
         vec3 toPoint = transpose(frame) * (point - positionValid.xyz);
         float toPointLength = length(toPoint);
-        vec3 normal = transpose(frame) * octDecode(unpackSnorm2x16(record.normalSnorm2x16));
+        vec3 normal = transpose(frame) * worldNormal;
+        uint packedNormal = uPlanes != 0 ? ismPackNormal(worldNormal, point - positionValid.xyz) : kISMNoNormal;
+        float centreDistance = uPlanes != 0 ? ismPlaneSplatDistance(toPoint, normal, kVPLNoOccluder,
+                                                                    texel.xy - tileOrigin, uMapSize)
+                                            : pointDistance;
+        if (ismValid(centreDistance)) splatTexel(texel, centreDistance, packedNormal);
+        if (!(uSplatRadius > 0.0)) continue;
         vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
         mat2 ellipse = ismSplatEllipse(toPoint, normal, uSplatRadius, uMapSize);
         vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);
@@ -77,8 +99,9 @@ void main()
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x) {
                 float distance = ismSplatDistance(toPoint, toPointLength, normal, uSplatRadius, centre, ellipse, ivec2(x, y), uMapSize);
-                if (ismValid(distance))
-                    imageAtomicMin(uMaps, ivec3(tileOrigin + ivec2(x, y), texel.z), floatBitsToUint(distance));
+                if (uPlanes != 0 && ismValid(distance))
+                    distance = ismPlaneSplatDistance(toPoint, normal, uSplatRadius, ivec2(x, y), uMapSize);
+                if (ismValid(distance)) splatTexel(ivec3(tileOrigin + ivec2(x, y), texel.z), distance, packedNormal);
             }
     }
 }

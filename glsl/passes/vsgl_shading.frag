@@ -63,7 +63,7 @@ void main()
         if (l.normalValid.w == 0.0) continue;
         valid += 1.0;
         if (dot(ng, l.positionRadius2.xyz - s.position) <= 0.0) continue;
-        float v = uVisibility != 0 ? ismVisibility(i, l.positionRadius2.xyz, l.normalValid.xyz, s.position, s.normal) : 1.0;
+        float v = uVisibility != 0 ? ismVisibility(i, l.positionRadius2.xyz, l.normalValid.xyz, s.position, s.normal, ng) : 1.0;
         if (v == 0.0) continue;
         vec3 toLight = rsmDirectionToLight(layers[int(l.flux.w)], l.positionRadius2.xyz);
         if (uPointLights != 0) {

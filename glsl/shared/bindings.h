@@ -58,6 +58,9 @@ VPLGI_CONST int kImageRSMTarget = 0;  // 6 units: RSM level l+1 per attachment (
 VPLGI_CONST int kImageVPLShadowMaps = 6; // r32f 2D array: the VPL paraboloid maps being written
 VPLGI_CONST int kImageISMMaps = 6;    // ISM maps (r32f seen as r32ui): the level being splatted, pulled from or pushed
 VPLGI_CONST int kImageISMCoarser = 7; // ISM maps (r32f seen as r32ui): the next coarser level
+VPLGI_CONST int kImageISMNormals = 7; // ISM planes' packed normals (r32ui), in the splat and gap filling (pull-push uses unit 7 after them)
+VPLGI_CONST int kImageISMGapDistances = 2; // ISM gap filling's output distances (r32f seen as r32ui)
+VPLGI_CONST int kImageISMGapNormals = 3;   // ISM gap filling's output packed normals (r32ui)
 VPLGI_CONST int kImageSelectedVALs = 1; // r32f map of the RSM texels LightSkin selected (its debug view)
 VPLGI_CONST int kImageImportanceCoarser = 1; // r32f importance map, level l+1 (passes/importance_mips.comp)
 
@@ -84,6 +87,7 @@ VPLGI_CONST int kUnitImportanceMips = 23; // the PDF of BRSMs with box mips (pas
 VPLGI_CONST int kUnitGBufferSurfaceNormals = 24; // G-buffer: octahedral geometric (xy) and interpolated (zw) normals
 VPLGI_CONST int kUnitBilateralGuide = 25; // per pixel: the filter's normal (xyz) and in-plane scale (w) (passes/bilateral_guide.frag)
 VPLGI_CONST int kUnitAntialiasInput = 26; // the tone-mapped display that passes/fxaa.frag antialiases
+VPLGI_CONST int kUnitISMNormals = 27; // imperfect shadow maps with planes: packed normals (usampler2DArray, r32ui)
 
 // Explicit uniform locations (program-wide: the vertex and fragment stages share them).
 VPLGI_CONST int kLocationFullscreenLayer = 0; // lib/fullscreen.vert: layer of a layered target

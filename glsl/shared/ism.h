@@ -19,8 +19,13 @@
 #define VPLGI_SHARED_ISM_H
 #include "compat.h"
 #include "light_view.h"
+#include "normals.h"
+#include "plane_visibility.h"
 #include "shadow_atlas.h"
 #include "vpl.h"
+#ifdef __cplusplus
+#include <glm/gtc/packing.hpp>
+#endif
 
 VPLGI_SHARED_BEGIN
 
@@ -134,6 +139,17 @@ VPLGI_FUNC ivec2 ismSplatLastTexel(vec2 centre, vec2 extent, int mapSize)
     return min(ivec2(floor(centre + extent - vec2(0.5f))), ivec2(mapSize - 1));
 }
 
+// The distance along the direction of texel `texel`'s centre to the plane through `toPoint` with unit
+// normal `normal` (light frame), kept within [d - radius, d + radius] (d = |toPoint|; the plane is
+// nearly parallel to the direction at a disk's ends); d for radius 0.
+VPLGI_FUNC float ismPlaneDistance(vec3 toPoint, float d, vec3 normal, float radius, ivec2 texel, int mapSize)
+{
+    vec3 w = vplParaboloidTexelDirection(texel, mapSize);
+    float nw = dot(normal, w);
+    float t = abs(nw) > 1.0e-6f ? dot(normal, toPoint) / nw : d;
+    return clamp(t, max(d - radius, 0.0f), d + radius);
+}
+
 // The distance the disk's splat writes into texel `texel` of the tile: kVPLNoOccluder when the
 // texel's centre is outside the ellipse, else the distance along the texel's direction to the disk's
 // plane, kept within [d - radius, d + radius] (d = |toPoint|, computed once per point by the caller;
@@ -147,10 +163,144 @@ VPLGI_FUNC float ismSplatDistance(vec3 toPoint, float d, vec3 normal, float radi
     float a = ellipse[1].y * offset.x - ellipse[1].x * offset.y;
     float b = ellipse[0].x * offset.y - ellipse[0].y * offset.x;
     if (!(a * a + b * b <= det * det)) return kVPLNoOccluder;
+    return ismPlaneDistance(toPoint, d, normal, radius, texel, mapSize);
+}
+
+// A light with extent (a VSGL, radius r_i) is not shadowed by its own footprint: the points within
+// ownRadius r_i are left out of its map (ours). With ownSurfaceOnly, only those of its own surface
+// are (ours): facing the light's way (normals within 60 degrees) and within half that radius of its
+// tangent plane. The walls beside a VSGL on a floor then stay in its map (they stopped the light
+// of VSGLs beside a shared wall from reaching the room behind it); a footprint over a convex edge,
+// whose mean position lies inside the object, still sees out over the object's other faces.
+VPLGI_FUNC bool ismOwnSurface(vec3 lightToPoint, vec3 pointNormal, vec3 lightNormal, float ownRadius)
+{
+    return dot(pointNormal, lightNormal) > 0.5f && abs(dot(lightNormal, lightToPoint)) < 0.5f * ownRadius;
+}
+
+// Planes (ours, not in Ritschel et al. 2008 nor in VSGL; `<technique>.ismPlanes`): each texel also
+// keeps the normal of the point whose splat won it (a second splat pass writes it where the point's
+// distance equals the texel's; ties go to the smallest packed normal, so the maps do not depend on
+// the order the invocations run in), turned towards the light, and the centre texel holds the
+// distance along its central direction to the point's plane, as the disk's other texels do. The
+// lookup then judges a receiver by the four texels around its direction with the plane rule of
+// glsl/shared/plane_visibility.h (the one LightSkin's visibility maps use) instead of one texel's
+// depth with a relative bias: a receiver 10 cm behind a wall 5 m away is behind the wall's plane,
+// while within 10% of its depth, the relative bias's margin, it was lit (issue "Every light type in
+// the RSM techniques": the sealed room's closed side lit along its joints).
+VPLGI_CONST uint kISMNoNormal = 0xFFFFFFFFu; // a texel no splat's normal reached (empty, or filled by pull-push)
+
+// Below this cosine between a texel's direction and a point's plane, the point writes nothing into the
+// texel with planes: the distance along the direction to a plane seen that edge-on says little.
+VPLGI_CONST float kISMPlaneGrazing = 0.01f;
+
+// With planes, the distance a point (toPoint, unit normal, light frame) writes into texel `texel` of
+// the tile: along the texel's central direction to the point's plane, without the clamp of
+// ismPlaneDistance (a clamped distance is off the plane the normal describes), and kVPLNoOccluder
+// where the direction meets the plane at a grazing angle (kISMPlaneGrazing), behind the light, or
+// farther than `reach` from the point (for a texel of the disk's ellipse: outside the disk, which
+// the ellipse, a first-order image, overshoots when the disk is seen edge-on; the point's own texel
+// passes a reach of kVPLNoOccluder: its centre ray is within a texel of the point).
+VPLGI_FUNC float ismPlaneSplatDistance(vec3 toPoint, vec3 normal, float reach, ivec2 texel, int mapSize)
+{
     vec3 w = vplParaboloidTexelDirection(texel, mapSize);
     float nw = dot(normal, w);
-    float t = abs(nw) > 1.0e-6f ? dot(normal, toPoint) / nw : d;
-    return clamp(t, max(d - radius, 0.0f), d + radius);
+    if (!(abs(nw) >= kISMPlaneGrazing)) return kVPLNoOccluder;
+    float t = dot(normal, toPoint) / nw;
+    if (!(t > 0.0f) || !(length(t * w - toPoint) <= reach)) return kVPLNoOccluder;
+    return t;
+}
+
+// The packed normal a splat writes: unit `normal` (world) turned towards the light (a point's
+// geometric normal may face away: the far side of a wall is splatted too).
+VPLGI_FUNC uint ismPackNormal(vec3 normal, vec3 lightToPoint)
+{
+    vec3 n = dot(normal, lightToPoint) > 0.0f ? -normal : normal;
+    return packSnorm2x16(octEncode(n));
+}
+
+// The first (lower-left) of the four texels (in the tile) around unit direction `directionLight`
+// (light frame; below the hemisphere pulled up onto it), kept so that all four lie in the tile, and
+// where the direction lies between their centres (0-1 along x and y) in `f`.
+VPLGI_FUNC ivec2 ismPlaneNeighbours(vec3 directionLight, int mapSize, VPLGI_OUT(vec2) f)
+{
+    vec3 d = normalize(vec3(directionLight.x, directionLight.y, max(directionLight.z, 0.0f)));
+    vec2 position = ismMapPosition(d, mapSize) - vec2(0.5f);
+    vec2 first = clamp(floor(position), vec2(0.0f), vec2(float(mapSize - 2)));
+    f = clamp(position - first, vec2(0.0f), vec2(1.0f));
+    return ivec2(first);
+}
+
+// A paraboloid texel spans 2 / N (centre) to 4 / N (rim) radians: the plane rule's footprint takes the larger.
+VPLGI_FUNC float ismPlaneTexelAngle(int mapSize)
+{
+    return 4.0f / float(mapSize);
+}
+
+
+// Gap filling (ours; `<technique>.ismGapReach`, with planes): a gap between splats is not empty but
+// shows what lies behind the surface, and pull-push, which fills empty texels only, cannot close it
+// (a wall with a gap lights the room behind it). A texel whose two opposite neighbours k texels away
+// (left and right, below and above, or a diagonal pair) both saw one plane, which its own ray crosses
+// near their points before its own hit, looked through a gap in that surface: it takes the plane.
+// Past a surface's edge only one side sees it, so silhouettes stay where they are. The pass reads
+// the splatted maps and writes a copy (glsl/passes/ism_gaps.comp), so the result does not depend on
+// the order texels are filled in.
+
+// The distance along texel j's central direction dJ to the plane both a and b saw (their central
+// directions, distances and normals facing the light; k texels from j on opposite sides), when j's
+// ray crosses it near both of their points (within k + 1/2 texels, texelAngle each, at their
+// distance and slant) and before its own hit tJ (kVPLNoOccluder: none) by more than the plane rule's
+// margin; kVPLNoOccluder otherwise. The two planes must agree: normals within about 25 degrees, the
+// crossings within 1% of the distance.
+VPLGI_FUNC float ismGapCrossing(vec3 dJ, float tJ, vec3 dA, float tA, vec3 nA, vec3 dB, float tB, vec3 nB,
+                                float texelAngle, float k, float lift)
+{
+    if (!ismValid(tA) || !ismValid(tB)) return kVPLNoOccluder;
+    float towardA = dot(nA, dJ), towardB = dot(nB, dJ);
+    if (!(towardA < -kISMPlaneGrazing) || !(towardB < -kISMPlaneGrazing)) return kVPLNoOccluder;
+    float sA = tA * dot(nA, dA) / towardA, sB = tB * dot(nB, dB) / towardB;
+    if (!(sA > 0.0f) || !(sB > 0.0f)) return kVPLNoOccluder;
+    float reachA = (k + 0.5f) * tA * texelAngle / max(abs(dot(nA, dA)), 0.05f);
+    float reachB = (k + 0.5f) * tB * texelAngle / max(abs(dot(nB, dB)), 0.05f);
+    if (!(dot(nA, nB) > 0.9f) || !(abs(sA - sB) <= 0.01f * max(sA, sB) + lift)) return kVPLNoOccluder;
+    if (ismValid(tJ) && !(max(sA, sB) < tJ - (kPlaneMapRelative * tJ + lift))) return kVPLNoOccluder;
+    if (!(length(sA * dJ - tA * dA) <= reachA) || !(length(sB * dJ - tB * dB) <= reachB)) return kVPLNoOccluder;
+    return min(sA, sB);
+}
+
+// At the horizon (ours, with gap filling): when b lies beyond the paraboloid's rim (ismBeyondRim),
+// a alone: the gap runs out to the light's own tangent plane, where no splat can close it (points
+// near that plane are not splatted, kISMHorizonCosine), so a wall that meets the light's surface (a
+// shared wall under the ceiling a light sits on) otherwise leaves a band of gaps along the rim.
+// Light leaves there at grazing angles, a few texels from the horizon.
+VPLGI_FUNC float ismGapCrossingAtRim(vec3 dJ, float tJ, vec3 dA, float tA, vec3 nA, float texelAngle, float k,
+                                     float lift)
+{
+    if (!ismValid(tA)) return kVPLNoOccluder;
+    float towardA = dot(nA, dJ);
+    if (!(towardA < -kISMPlaneGrazing)) return kVPLNoOccluder;
+    float s = tA * dot(nA, dA) / towardA;
+    if (!(s > 0.0f)) return kVPLNoOccluder;
+    if (ismValid(tJ) && !(s < tJ - (kPlaneMapRelative * tJ + lift))) return kVPLNoOccluder;
+    float reachA = (k + 0.5f) * tA * texelAngle / max(abs(dot(nA, dA)), 0.05f);
+    if (!(length(s * dJ - tA * dA) <= reachA)) return kVPLNoOccluder;
+    return s;
+}
+
+// Whether texel `texel` (of the tile, any integers) lies beyond the paraboloid map's rim: its centre
+// outside the unit disk (or the tile), where no direction of the hemisphere falls.
+VPLGI_FUNC bool ismBeyondRim(ivec2 texel, int mapSize)
+{
+    vec2 st = 2.0f * (vec2(float(texel.x), float(texel.y)) + vec2(0.5f)) / float(mapSize) - vec2(1.0f);
+    return dot(st, st) > 1.0f;
+}
+
+// The k-th opposite pair's offset from j (pair 0: along x, 1: along y, 2 and 3: the diagonals);
+// a = j - offset, b = j + offset.
+VPLGI_FUNC ivec2 ismGapOffset(int pair, int k)
+{
+    ivec2 unit = pair == 0 ? ivec2(1, 0) : (pair == 1 ? ivec2(0, 1) : (pair == 2 ? ivec2(1, 1) : ivec2(1, -1)));
+    return unit * k;
 }
 
 // 1 = lit, 0 = shadowed: q's distance against the stored one with SMCIR's relative bias.

@@ -24,5 +24,5 @@ void main()
     vec4 positionValid = lightRecords[2 * light];
     vec3 normal = lightRecords[2 * light + 1].xyz;
     visibility[i] = ismVisibility(light, positionValid.xyz, normal, receivers[receiver].position.xyz,
-                                  receivers[receiver].normal.xyz);
+                                  receivers[receiver].normal.xyz, receivers[receiver].normal.xyz);
 }
