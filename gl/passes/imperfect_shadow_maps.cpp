@@ -72,6 +72,9 @@ void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
             "each texel keeps the plane of the point that won it and the lookup judges a receiver by the planes of "
             "the four texels around its direction (the rule of LightSkin's visibility maps) instead of one depth "
             "with depthBias and normalOffset (ours)");
+    v.field(prefix + "EdgeMargin", edgeMargin, 0.0f, 1.0f,
+            "with planes: a texel beside a parallel step of its surface (another texel's hit up to this x the distance "
+            "behind its plane) hides a receiver only beyond this x the distance behind its plane (ours)");
     v.field(prefix + "GapReach", gapReach, 0, 4,
             "with planes: a texel whose two opposite neighbours up to this many texels away saw one plane that its ray "
             "crosses before its own hit looked through a gap between splats and takes that plane; 0 = no gap filling "
@@ -317,6 +320,7 @@ void ImperfectShadowMaps::bindForReading(const gl::Program& program) const
     program.set("uISMDepthBias", mParams.depthBias);
     program.set("uISMPlanes", mParams.planes ? 1 : 0);
     program.set("uISMLift", mLift);
+    program.set("uISMEdgeMargin", mParams.edgeMargin);
     program.set("uISMOverhang", mSplatRadius);
     if (mParams.planes) {
         glBindTextureUnit(shared::kUnitISMNormals, mNormals.id());

@@ -73,14 +73,26 @@
 //  machine (splat 106, push 53, pull 14, clear 1 ms; 0.2-0.5 s while other builds shared it). The
 //  paper reports 8-12 ms for its AISMs on a 2011 GPU.
 //  Planes (`planes`, ours): the splat runs twice; the second pass writes, into a second r32ui atlas,
-//  the packed normal of the point whose distance won each texel, and the centre texel holds the
-//  distance to the point's plane along its central direction, as the disk's texels do. The lookup
-//  (glsl/lib/ism.glsl) then judges a receiver by the planes of the four texels around its direction
-//  (glsl/shared/plane_visibility.h, the rule LightSkin's visibility maps use) instead of one texel's
-//  depth with the relative depthBias and normalOffset, which it does not use. A texel without a normal
-//  (filled by pull-push) counts as a plane facing the light. Why: the relative bias let a receiver
-//  within 10% of its distance behind a wall count as lit (the sealed room's closed side along its
-//  joints); measured per pair and per image in docs/vsgl.md, "Imperfect shadow maps with planes".
+//  the packed normal of the point whose distance won each texel, and every texel a point writes holds
+//  the distance along the texel's central direction to the point's plane (unclamped, so that the
+//  distance and the normal describe one plane; a disk's texel whose ray meets the plane outside the
+//  disk, or at a grazing angle, is not written). The lookup (glsl/lib/ism.glsl) then judges a
+//  receiver by the planes of the four texels around its direction (glsl/shared/plane_visibility.h,
+//  the rule LightSkin's visibility maps use; a hit up to the disks' radius behind a plane counts as in
+//  front of it for the rule's cut, since a disk overhangs the corner where its wall meets the next)
+//  instead of one texel's depth with the relative depthBias and normalOffset, which it does not use.
+//  A texel without a normal (filled by pull-push) counts as a plane facing the light. Beside a
+//  parallel step of its surface (another of the four texels sees a parallel face up to edgeMargin x
+//  the distance behind its plane, which does not hide the receiver) a texel hides a receiver only
+//  beyond that margin: a texel is 2-4 / N radians wide, and terraces under it (the canyon's, 21 m
+//  away under 2.6 m texels) are not in the map. Gap filling
+//  (`gapReach`, ours, passes/ism_gaps.comp into copies, then copied back): a texel whose two opposite
+//  neighbours up to gapReach texels away saw one plane that its ray crosses before its own hit takes
+//  that plane; at the rim one neighbour suffices when the other lies beyond it. Lights with extent
+//  leave out only their own surface (`ownSurfaceOnly`). Why: the relative bias let a receiver within
+//  10% of its distance behind a wall count as lit, and the gaps between splats let light through the
+//  walls (the sealed room's closed side); measured per pair and per image in docs/vsgl.md,
+//  "Imperfect shadow maps with planes".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB
@@ -123,6 +135,7 @@ struct ISMParams {
     float ownRadius = 1.0f;          // lights with extent: points within this x their radius are not splatted (ours)
     bool ownSurfaceOnly = true;      // ... of those, only the light's own surface (ismOwnSurface) (ours)
     bool planes = true;              // texels keep the winning point's plane; the lookup tests planes (ours)
+    float edgeMargin = 0.1f;         // planes: margin beside a parallel step, relative to the distance (ours)
     int gapReach = 4;                // planes: gap filling from opposite neighbours up to this many texels away; 0 = none (ours)
     std::uint32_t seed = 1;          // the point set's random stream
 

@@ -13,6 +13,7 @@ uniform float uISMNormalOffset; // shaded point lifted along its normal by this 
 uniform float uISMDepthBias;    // lit while |q - y| <= stored distance * (1 + uISMDepthBias)
 uniform int uISMPlanes;         // 1: the plane rule on the four texels around the direction (glsl/shared/ism.h, planes)
 uniform float uISMLift;         // the plane rule's absolute margin [m]
+uniform float uISMEdgeMargin;   // the plane rule's margin at a surface's edge, relative to the distance
 uniform float uISMOverhang;     // the plane rule's cut: a hit up to this far behind a plane counts as in front [m] (the splats' radius)
 
 // Texel `texel` (in the tile) of light `light`'s map as the plane rule reads it: its central
@@ -45,7 +46,8 @@ float ismVisibility(int light, vec3 lightPosition, vec3 lightNormal, vec3 x, vec
         ismPlaneTexel(light, frame, first + ivec2(1, 0), d1, t1, n1);
         ismPlaneTexel(light, frame, first + ivec2(0, 1), d2, t2, n2);
         ismPlaneTexel(light, frame, first + ivec2(1, 1), d3, t3, n3);
-        return planeMapVisibility(lightPosition, x, ng, uISMLift, ismPlaneTexelAngle(uISMMapSize), uISMOverhang, f,
+        return planeMapVisibility(lightPosition, x, ng, uISMLift, ismPlaneTexelAngle(uISMMapSize), uISMOverhang,
+                                  uISMEdgeMargin, f,
                                   d0, t0, n0, d1, t1, n1, d2, t2, n2, d3, t3, n3);
     }
     vec3 q = ismLookupPoint(lightPosition, x, nx, uISMNormalOffset, uISMMapSize);

@@ -67,7 +67,7 @@ VPLGI_FUNC float visibilityMapVisibility(vec3 origin, vec3 val, vec3 valNormal, 
                                          float t0, vec3 n0, vec3 d1, float t1, vec3 n1, vec3 d2, float t2, vec3 n2,
                                          vec3 d3, float t3, vec3 n3)
 {
-    return planeMapVisibility(origin, val, valNormal, lift, 3.14159265f / float(size), 0.0f, f, d0, t0, n0, d1, t1,
+    return planeMapVisibility(origin, val, valNormal, lift, 3.14159265f / float(size), 0.0f, 0.0f, f, d0, t0, n0, d1, t1,
                               n1, d2, t2, n2, d3, t3, n3);
 }
 

@@ -35,7 +35,7 @@ VPLGI_CONST float kPlaneMapRelative = 0.002f; // the plane margin, relative to t
 // of the hit (texelAngle across at distance t, stretched by the slant; not a coplanar surface
 // further on, such as the floor of the next room), 0 otherwise or for a miss.
 VPLGI_FUNC int planeMapTexelVerdict(vec3 origin, vec3 receiver, vec3 receiverNormal, float lift, float texelAngle,
-                                    vec3 direction, float t, vec3 normal)
+                                    float edge, vec3 direction, float t, vec3 normal)
 {
     if (!(t < kPlaneMapMiss)) return 0;
     float margin = kPlaneMapRelative * t + lift;
@@ -46,7 +46,7 @@ VPLGI_FUNC int planeMapTexelVerdict(vec3 origin, vec3 receiver, vec3 receiverNor
     // receiver behind a wall lies below the wall's plane while the wall stands above the receiver's.
     float below = -dot(receiverNormal, hit - receiver);
     bool convex = below > 0.5f * -height && below < 2.0f * -height && -height < 0.5f * length(receiver - hit);
-    if (height < -margin && !convex) return 2;
+    if (height < -(margin + edge) && !convex) return 2;
     float footprint = 2.0f * t * texelAngle / max(abs(dot(normal, direction)), 0.05f);
     return height <= margin && length(receiver - hit) <= footprint ? 1 : 0;
 }
@@ -56,24 +56,56 @@ VPLGI_FUNC int planeMapTexelVerdict(vec3 origin, vec3 receiver, vec3 receiverNor
 // disk past the corner where the next wall begins, puts its hit up to its radius beyond that wall's
 // plane); for a miss, whether j's ray never crosses that plane.
 VPLGI_FUNC bool planeMapHitInFront(vec3 origin, float lift, float overhang, vec3 dI, float tI, vec3 nI, vec3 dJ,
-                                   float tJ)
+                                   float tJ, vec3 nJ)
 {
     if (!(tJ < kPlaneMapMiss)) return dot(nI, dJ) >= 0.0f;
-    return dot(nI, (origin + tJ * dJ) - (origin + tI * dI)) > -(kPlaneMapRelative * tI + lift + overhang);
+    float margin = kPlaneMapRelative * tI + lift;
+    float ahead = dot(nI, (origin + tJ * dJ) - (origin + tI * dI));
+    if (ahead > -margin) return true;
+    // A concave corner (i's hit in front of j's plane too): j's disk may overhang past it.
+    return ahead > -(margin + overhang) && dot(nJ, tI * dI - tJ * dJ) > -margin;
 }
 
 // Whether what texel j says of the receiver (its ray runs clear up to its hit, or it sees the
 // receiver's plane) is cut off: a texel i puts the receiver behind its own plane (verdict 2) while
 // j's hit lies in front of that plane, so j's clear path stays on the origin's side of a surface
 // that lies between the origin and the receiver.
-VPLGI_FUNC bool planeMapCut(vec3 origin, float lift, float overhang, vec3 dJ, float tJ, int r0, vec3 d0, float t0,
+VPLGI_FUNC bool planeMapCut(vec3 origin, float lift, float overhang, vec3 dJ, float tJ, vec3 nJ, int r0, vec3 d0, float t0,
                             vec3 n0, int r1, vec3 d1, float t1, vec3 n1, int r2, vec3 d2, float t2, vec3 n2, int r3,
                             vec3 d3, float t3, vec3 n3)
 {
-    return (r0 == 2 && planeMapHitInFront(origin, lift, overhang, d0, t0, n0, dJ, tJ)) ||
-           (r1 == 2 && planeMapHitInFront(origin, lift, overhang, d1, t1, n1, dJ, tJ)) ||
-           (r2 == 2 && planeMapHitInFront(origin, lift, overhang, d2, t2, n2, dJ, tJ)) ||
-           (r3 == 2 && planeMapHitInFront(origin, lift, overhang, d3, t3, n3, dJ, tJ));
+    return (r0 == 2 && planeMapHitInFront(origin, lift, overhang, d0, t0, n0, dJ, tJ, nJ)) ||
+           (r1 == 2 && planeMapHitInFront(origin, lift, overhang, d1, t1, n1, dJ, tJ, nJ)) ||
+           (r2 == 2 && planeMapHitInFront(origin, lift, overhang, d2, t2, n2, dJ, tJ, nJ)) ||
+           (r3 == 2 && planeMapHitInFront(origin, lift, overhang, d3, t3, n3, dJ, tJ, nJ));
+}
+
+// The extra margin texel i's "behind" test takes (edgeMargin x its distance; 0 for edgeMargin 0)
+// when it sees a step at the edge of its surface: another texel's hit lies behind its plane, by at
+// most that margin, and does not itself put the receiver behind its own plane (rK, that texel's
+// verdict without the extra margin, is not 2), on a parallel face (normals within 25 degrees). The plane does not go on across the four texels
+// there, and a receiver on the step behind it lies beside the surface rather than behind it, at a
+// distance a texel cannot resolve (a canyon's terraces 21 m away under 2.6 m texels). A hit far
+// behind (a gap in a wall, the room beyond) or a parallel face that hides the receiver too (the far
+// side of a thin wall) is no step. Where the other hits lie on or in front of the plane (a flat
+// wall, a concave corner) the plane is trusted to the small margin. For the imperfect shadow maps
+// (ours): a texel spans 2-4 / N radians, details under it are not in the map.
+VPLGI_FUNC bool planeMapStep(float lift, float edgeMargin, vec3 dI, float tI, vec3 nI, vec3 dK, float tK, vec3 nK,
+                             int rK)
+{
+    if (!(tK < kPlaneMapMiss) || rK == 2 || !(dot(nI, nK) > 0.9f)) return false;
+    float behind = -dot(nI, tK * dK - tI * dI);
+    return behind > kPlaneMapRelative * tI + lift && behind <= edgeMargin * tI;
+}
+
+VPLGI_FUNC float planeMapEdgeMargin(float lift, float edgeMargin, vec3 dI, float tI, vec3 nI, vec3 dA, float tA, vec3 nA,
+                                    int rA, vec3 dB, float tB, vec3 nB, int rB, vec3 dC, float tC, vec3 nC, int rC)
+{
+    if (!(edgeMargin > 0.0f) || !(tI < kPlaneMapMiss)) return 0.0f;
+    bool step = planeMapStep(lift, edgeMargin, dI, tI, nI, dA, tA, nA, rA) ||
+                planeMapStep(lift, edgeMargin, dI, tI, nI, dB, tB, nB, rB) ||
+                planeMapStep(lift, edgeMargin, dI, tI, nI, dC, tC, nC, rC);
+    return step ? edgeMargin * tI : 0.0f;
 }
 
 // One texel's share: its verdict, whether it is cut off (planeMapCut), and whether any texel that is
@@ -90,17 +122,27 @@ VPLGI_FUNC float planeMapTexelVisible(int verdict, bool cut, bool seenAny)
 // bilinearly (f the position between the texel centres, 0-1 along x and y; texels 0, 1 along x,
 // 2, 3 the next row).
 VPLGI_FUNC float planeMapVisibility(vec3 origin, vec3 receiver, vec3 receiverNormal, float lift, float texelAngle,
-                                    float overhang, vec2 f, vec3 d0, float t0, vec3 n0, vec3 d1, float t1, vec3 n1,
-                                    vec3 d2, float t2, vec3 n2, vec3 d3, float t3, vec3 n3)
+                                    float overhang, float edgeMargin, vec2 f, vec3 d0, float t0, vec3 n0, vec3 d1,
+                                    float t1, vec3 n1, vec3 d2, float t2, vec3 n2, vec3 d3, float t3, vec3 n3)
 {
-    int r0 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, d0, t0, n0);
-    int r1 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, d1, t1, n1);
-    int r2 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, d2, t2, n2);
-    int r3 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, d3, t3, n3);
-    bool c0 = planeMapCut(origin, lift, overhang, d0, t0, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
-    bool c1 = planeMapCut(origin, lift, overhang, d1, t1, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
-    bool c2 = planeMapCut(origin, lift, overhang, d2, t2, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
-    bool c3 = planeMapCut(origin, lift, overhang, d3, t3, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
+    int r0 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, 0.0f, d0, t0, n0);
+    int r1 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, 0.0f, d1, t1, n1);
+    int r2 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, 0.0f, d2, t2, n2);
+    int r3 = planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, 0.0f, d3, t3, n3);
+    if (edgeMargin > 0.0f) {
+        float e0 = planeMapEdgeMargin(lift, edgeMargin, d0, t0, n0, d1, t1, n1, r1, d2, t2, n2, r2, d3, t3, n3, r3);
+        float e1 = planeMapEdgeMargin(lift, edgeMargin, d1, t1, n1, d0, t0, n0, r0, d2, t2, n2, r2, d3, t3, n3, r3);
+        float e2 = planeMapEdgeMargin(lift, edgeMargin, d2, t2, n2, d0, t0, n0, r0, d1, t1, n1, r1, d3, t3, n3, r3);
+        float e3 = planeMapEdgeMargin(lift, edgeMargin, d3, t3, n3, d0, t0, n0, r0, d1, t1, n1, r1, d2, t2, n2, r2);
+        r0 = e0 > 0.0f ? planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, e0, d0, t0, n0) : r0;
+        r1 = e1 > 0.0f ? planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, e1, d1, t1, n1) : r1;
+        r2 = e2 > 0.0f ? planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, e2, d2, t2, n2) : r2;
+        r3 = e3 > 0.0f ? planeMapTexelVerdict(origin, receiver, receiverNormal, lift, texelAngle, e3, d3, t3, n3) : r3;
+    }
+    bool c0 = planeMapCut(origin, lift, overhang, d0, t0, n0, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
+    bool c1 = planeMapCut(origin, lift, overhang, d1, t1, n1, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
+    bool c2 = planeMapCut(origin, lift, overhang, d2, t2, n2, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
+    bool c3 = planeMapCut(origin, lift, overhang, d3, t3, n3, r0, d0, t0, n0, r1, d1, t1, n1, r2, d2, t2, n2, r3, d3, t3, n3);
     bool seen = (r0 == 1 && !c0) || (r1 == 1 && !c1) || (r2 == 1 && !c2) || (r3 == 1 && !c3);
     float v0 = planeMapTexelVisible(r0, c0, seen), v1 = planeMapTexelVisible(r1, c1, seen);
     float v2 = planeMapTexelVisible(r2, c2, seen), v3 = planeMapTexelVisible(r3, c3, seen);

@@ -226,6 +226,7 @@ struct Agreement {
     double embreeVisible = 0.0; // fraction of pairs Embree sees as visible
     double falseLit = 0.0;      // fraction of pairs ISM sees lit and Embree occluded
     double falseShadow = 0.0;   // fraction of pairs ISM sees shadowed and Embree visible
+    double weightedBias = 0.0; // sum over pairs of G (ISM - Embree) / sum of G Embree: the light a shading pass gains (+) or loses
     int crossPairs = 0;         // facing pairs the test's `cross` predicate picks (the sealed room: lit room to closed room)
     int crossLit = 0;           // of those, the ones ISM sees lit
 };
@@ -239,6 +240,7 @@ Agreement compareWithEmbree(const RayScene& rays, const std::vector<LightRecord>
 {
     Agreement a;
     int differ = 0, visible = 0, receiversCounted = 0;
+    double weightedDifference = 0.0, weightedVisible = 0.0;
     for (std::size_t r = 0; r < receivers.size(); ++r) {
         const glm::vec3 x(receivers[r].position), nx(receivers[r].normal);
         int facing = 0;
@@ -249,6 +251,11 @@ Agreement compareWithEmbree(const RayScene& rays, const std::vector<LightRecord>
             if (glm::dot(nx, w) <= 0.0f || glm::dot(ny, -w) <= 0.0f) continue;
             const bool reference = rays.visible(y, x);
             const bool approximate = ism[r * lights.size() + l] > 0.5f;
+            // G = cos cos / d^2 (d^2 at least 1e-4 m^2): what a pair adds to a shading pass's sum.
+            const float d2 = std::max(glm::dot(w, w), 1e-4f);
+            const double g = static_cast<double>(glm::dot(nx, w) * glm::dot(ny, -w) / (d2 * d2));
+            weightedDifference += g * (static_cast<double>(ism[r * lights.size() + l]) - (reference ? 1.0 : 0.0));
+            weightedVisible += reference ? g : 0.0;
             if (cross && cross(y, x)) {
                 ++a.crossPairs;
                 a.crossLit += approximate ? 1 : 0;
@@ -269,6 +276,7 @@ Agreement compareWithEmbree(const RayScene& rays, const std::vector<LightRecord>
         }
     }
     a.disagreement = a.pairs > 0 ? static_cast<double>(differ) / a.pairs : 0.0;
+    a.weightedBias = weightedVisible > 0.0 ? weightedDifference / weightedVisible : 0.0;
     a.embreeVisible = a.pairs > 0 ? static_cast<double>(visible) / a.pairs : 0.0;
     a.falseLit /= std::max(1, a.pairs);
     a.falseShadow /= std::max(1, a.pairs);
@@ -297,6 +305,9 @@ std::vector<std::pair<std::string, ISMParams>> ismVariants()
     ISMParams p = ISMParams{};
     p.planes = false;
     variants.emplace_back(kDepthVariant, p);
+    p = ISMParams{};
+    p.gapReach = 0;
+    variants.emplace_back("defaults without gap filling", p);
     p = ISMParams{};
     p.stratified = false;
     variants.emplace_back("defaults with i.i.d. points", p);
@@ -339,9 +350,9 @@ std::map<std::string, Agreement> agreementOfVariants(const Scene& scene, const R
             compareWithEmbree(rays, lights, receivers, probeVisibility(ism, lightBuffer, lightCount, receivers), cross);
         std::printf("ISM vs Embree, %s x %zu receivers (%d facing pairs, %.3f visible), %s: pairs disagreeing "
                     "%.4f, mean |visible fraction error| per receiver %.4f, mean signed %+.4f (false lit %.4f, "
-                    "false shadow %.4f)",
+                    "false shadow %.4f), light through G %+.4f",
                     label, receivers.size(), a.pairs, a.embreeVisible, name.c_str(), a.disagreement, a.fractionError,
-                    a.fractionBias, a.falseLit, a.falseShadow);
+                    a.fractionBias, a.falseLit, a.falseShadow, a.weightedBias);
         if (cross) std::printf("; lit room to closed room: %d of %d pairs lit", a.crossLit, a.crossPairs);
         std::printf("\n");
         measured[name] = a;
@@ -437,6 +448,83 @@ TEST_CASE("ISM: a light with extent is not shadowed by its own footprint", "[gl]
     CHECK(litReceivers(1.0f, -1) == 0);
 }
 
+TEST_CASE("ISM: a wall beside a light with extent still shadows (own surface only)", "[gl][ism]")
+{
+    // A VSGL on a floor (normal +z, radius r_i = 0.3 m) 15 cm from a wall (x = 0.15), receivers
+    // beyond the wall at x = 1 facing it, 17-19 degrees above the floor: their rays cross the wall
+    // 0.155-0.16 m from the light, within r_i. Leaving every point within r_i out of the map
+    // (ownSurfaceOnly = false, the previous rule) leaves that part of the wall out and lights them;
+    // leaving out only the light's own surface (facing its way, near its tangent plane) keeps the
+    // wall, which shadows them. The convex case (the test above) stays lit with either.
+    test::ensureGLContext();
+    const Quad wall{glm::vec3(0.15f, -1.0f, -0.5f), glm::vec3(0.15f, 1.0f, -0.5f), glm::vec3(0.15f, 1.0f, 1.0f),
+                    glm::vec3(0.15f, -1.0f, 1.0f)};
+    const Scene scene = quadScene({wall});
+    const std::vector<LightRecord> lights{{glm::vec4(0.0f, 0.0f, 0.0f, 0.3f * 0.3f), glm::vec4(0.0f, 0.0f, 1.0f, 1.0f)}};
+    const gl::Buffer lightBuffer = uploadLights(lights);
+    std::vector<Receiver> receivers;
+    for (float y : {-0.2f, 0.0f, 0.2f})
+        for (float z : {0.3f, 0.35f})
+            receivers.push_back({glm::vec4(1.0f, y, z, 1.0f), glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f)});
+    auto litReceivers = [&](bool ownSurfaceOnly, bool planes) {
+        ISMParams params;
+        params.ownSurfaceOnly = ownSurfaceOnly;
+        params.planes = planes;
+        params.points = params.pointsPerMap;
+        ImperfectShadowMaps ism(test::shaders(), params, 1);
+        ism.setScene(scene);
+        ism.update(lightBuffer, 1, 2, 1, 0);
+        const std::vector<float> v = probeVisibility(ism, lightBuffer, 1, receivers);
+        return static_cast<int>(std::count_if(v.begin(), v.end(), [](float x) { return x > 0.0f; }));
+    };
+    CHECK(litReceivers(true, true) == 0);
+    CHECK(litReceivers(true, false) == 0);
+    CHECK(litReceivers(false, true) == 6);
+}
+
+TEST_CASE("ISM: planes: a step beside a surface's edge lights, a thin wall shadows", "[gl][ism]")
+{
+    // A light at the origin facing +z. Step: a face at z = 4 for x < 0 and a parallel face 10 cm
+    // behind it (z = 4.1) for x > 0; receivers on the rear face 2-10 cm from the step's edge see the
+    // light (their rays pass beside the front face). A 64^2 texel there is about 25 cm across, so the
+    // front face's plane lies among their four texels: without the edge margin they are behind it.
+    // Thin wall: both faces span the light's view, the receivers 40 cm behind: shadowed with the
+    // margin too (the far face hides them as well).
+    test::ensureGLContext();
+    auto facing = [](float x0, float x1, float z) {
+        return Quad{glm::vec3(x0, -1.0f, z), glm::vec3(x0, 1.0f, z), glm::vec3(x1, 1.0f, z), glm::vec3(x1, -1.0f, z)};
+    };
+    const Scene step = quadScene({facing(-3.0f, 0.0f, 4.0f), facing(0.0f, 3.0f, 4.1f)});
+    const Scene wall = quadScene({facing(-3.0f, 3.0f, 4.0f), facing(-3.0f, 3.0f, 4.1f), facing(-3.0f, 3.0f, 4.5f)});
+    const std::vector<LightRecord> lights{{glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)}};
+    const gl::Buffer lightBuffer = uploadLights(lights);
+    auto visibility = [&](const Scene& scene, float z, float edgeMargin) {
+        std::vector<Receiver> receivers;
+        for (float x : {0.02f, 0.05f, 0.1f})
+            for (float y : {-0.2f, 0.0f, 0.2f})
+                receivers.push_back({glm::vec4(x, y, z, 1.0f), glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)});
+        ISMParams params;
+        params.edgeMargin = edgeMargin;
+        params.pointsPerMap = 32768;
+        params.points = 32768;
+        ImperfectShadowMaps ism(test::shaders(), params, 1);
+        ism.setScene(scene);
+        ism.update(lightBuffer, 1, 2, 0);
+        const std::vector<float> v = probeVisibility(ism, lightBuffer, 1, receivers);
+        double sum = 0.0;
+        for (float x : v) sum += x;
+        return sum / static_cast<double>(v.size());
+    };
+    const double withMargin = visibility(step, 4.1f, 0.1f), without = visibility(step, 4.1f, 0.0f);
+    const double wallWith = visibility(wall, 4.5f, 0.1f);
+    std::printf("ISM planes: receivers beside a 10 cm step 4 m away lit %.3f (edge margin 0.1), %.3f (none); behind "
+                "a thin wall %.3f\n",
+                withMargin, without, wallWith);
+    CHECK(withMargin > 0.95); // measured 1.000 and 0.721 (llvmpipe)
+    CHECK(without < withMargin - 0.2);
+    CHECK(wallWith == 0.0);
+}
+
 TEST_CASE("ISM: visibility in the Cornell box against Embree rays", "[gl][ism][numbers]")
 {
     test::ensureGLContext();
@@ -489,15 +577,15 @@ TEST_CASE("ISM: visibility in the Cornell box against Embree rays", "[gl][ism][n
                     a.disagreement, a.fractionError, a.fractionBias, a.falseLit, a.falseShadow);
     }
     // Measured on llvmpipe: see docs/vsgl.md "Imperfect shadow maps" for the table this prints.
-    // Defaults (footprint splats, stratified points, no pull-push): 0.068 of the pairs disagree,
-    // -0.016 in the mean (0.028 false lit, 0.040 false shadow). One-texel
-    // points with 4 pull-push levels (the previous default, Ritschel et al.'s splat): 0.139 of the
-    // pairs, +0.008 in the mean (0.074 false lit, 0.065 false shadow cancelling). The exact maps
-    // above: 0.039 of the pairs. Bounds at about 2-3x.
+    // Defaults (footprint splats, stratified points, no pull-push, planes with gap filling): 0.054
+    // of the pairs disagree, -0.030 in the mean (0.021 false lit, 0.034 false shadow). Depth lookups
+    // (the previous default): 0.068, -0.016 (0.028, 0.040). One-texel points with 4 pull-push levels
+    // (Ritschel et al.'s splat): 0.139 of the pairs, +0.008 in the mean (0.074 false lit, 0.065
+    // false shadow cancelling). The exact maps above: 0.039 of the pairs. Bounds at about 2-3x.
     const Agreement& atDefault = measured.at(kDefaultVariant);
     CHECK(atDefault.disagreement < 0.15);
-    CHECK(atDefault.fractionError < 0.08);
-    CHECK(std::abs(atDefault.fractionBias) < 0.04);
+    CHECK(atDefault.fractionError < 0.12);
+    CHECK(std::abs(atDefault.fractionBias) < 0.08);
     // The footprint splats agree with Embree more often than one-texel points with pull-push.
     CHECK(atDefault.disagreement < 0.8 * measured.at(kOneTexelVariant).disagreement);
 }
@@ -526,12 +614,17 @@ TEST_CASE("ISM: the sealed room's 10 cm walls stop the light", "[gl][ism][number
     };
     const std::map<std::string, Agreement> measured =
         agreementOfVariants(scene, rays, lights, receivers, "sealed, 256 surface lights", cross);
-    // Measured: defaults 0.018 of the pairs disagree, 0.014 lit though occluded (most of it at the wall
-    // joints, within the depth bias's 10% of the distance behind the wall); one-texel points with
-    // pull-push 0.176 and 0.173. Bounds at about 2-3x; the one-texel check shows the test can fail.
+    // Measured: defaults 0.0044 of the pairs disagree, 0.0042 lit though occluded, and 0 of the 964
+    // pairs from the lit room's inside to the closed room lit; depth lookups (the previous default)
+    // 0.018, 0.014 and 37 (at the wall joints, within the depth bias's 10% of the distance behind the
+    // wall), without gap filling 37 too; one-texel points with pull-push 0.176, 0.173 and
+    // 599. Bounds at about 2-3x (the cross-room count: measured 0, bound 3 of 964, against 37 with
+    // depth lookups, which shows the check can fail).
     const Agreement& atDefault = measured.at(kDefaultVariant);
-    CHECK(atDefault.falseLit < 0.04);
-    CHECK(atDefault.disagreement < 0.05);
+    CHECK(atDefault.falseLit < 0.012);
+    CHECK(atDefault.disagreement < 0.012);
+    CHECK(atDefault.crossLit <= 3);
+    CHECK(measured.at(kDepthVariant).crossLit > 10);
     CHECK(measured.at(kOneTexelVariant).falseLit > 4.0 * atDefault.falseLit);
 }
 
@@ -623,6 +716,89 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
     CHECK(covered > 8 * 1000); // a light inside the box sees walls in most directions
     CHECK(differ <= 0);        // measured: 0 (the arithmetic is the same; no FMA reorders it on llvmpipe)
     CHECK(normalsDiffer <= 0); // measured: 0 (the same packing; the GPU's normals come from the winning points)
+}
+
+TEST_CASE("ISM: gap filling matches its CPU twin and closes gaps in the sealed room's walls", "[gl][ism]")
+{
+    // The same splats without and with gap filling (the splat is deterministic, so the first is the
+    // second's input); the CPU twin (the loop of passes/ism_gaps.comp on glsl/shared/ism.h's
+    // functions) applied to the first must give the second, bit for bit.
+    test::ensureGLContext();
+    const Scene scene = makeBuiltinScene("sealed");
+    const std::vector<LightRecord> lights = surfaceLights(scene, 16, 3);
+    const gl::Buffer lightBuffer = uploadLights(lights);
+    ISMParams without;
+    without.gapReach = 0;
+    const ISMParams with;
+    REQUIRE(with.gapReach > 0);
+    ImperfectShadowMaps before(test::shaders(), without, 16), after(test::shaders(), with, 16);
+    before.setScene(scene);
+    after.setScene(scene);
+    before.update(lightBuffer, 16, 2, 0);
+    after.update(lightBuffer, 16, 2, 0);
+    const int size = with.mapSize;
+    const float angle = shared::ismPlaneTexelAngle(size);
+    const float lift = 1e-4f * glm::length(scene.worldBounds().extent()); // as ImperfectShadowMaps::setScene
+    int filled = 0, differ = 0, rimFilled = 0;
+    for (int light = 0; light < 16; ++light) {
+        const std::vector<float> map = readMap(before, light), result = readMap(after, light);
+        const std::vector<std::uint32_t> normals = readNormals(before, light), resultNormals = readNormals(after, light);
+        const glm::mat3 frame = shared::lightViewBasis(glm::vec3(lights[static_cast<std::size_t>(light)].normal));
+        auto at = [size](glm::ivec2 t) { return static_cast<std::size_t>(t.y * size + t.x); };
+        auto direction = [&](glm::ivec2 t) { return frame * shared::vplParaboloidTexelDirection(t, size); };
+        auto normalOf = [&](std::uint32_t word) { return shared::octDecode(glm::unpackSnorm2x16(word)); };
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const glm::ivec2 j(x, y);
+                const glm::vec3 dJ = direction(j);
+                float best = shared::kVPLNoOccluder;
+                std::uint32_t bestNormal = shared::kISMNoNormal;
+                bool fromRim = false;
+                for (int k = 1; k <= with.gapReach; ++k)
+                    for (int pair = 0; pair < 4; ++pair) {
+                        const glm::ivec2 a = j - shared::ismGapOffset(pair, k), b = j + shared::ismGapOffset(pair, k);
+                        const bool rimA = shared::ismBeyondRim(a, size), rimB = shared::ismBeyondRim(b, size);
+                        if (rimA != rimB) {
+                            const glm::ivec2 inside = rimA ? b : a;
+                            if (normals[at(inside)] == shared::kISMNoNormal) continue;
+                            const float s = shared::ismGapCrossingAtRim(dJ, map[at(j)], direction(inside), map[at(inside)],
+                                                                        normalOf(normals[at(inside)]), angle,
+                                                                        static_cast<float>(k), lift);
+                            if (s < best) {
+                                best = s;
+                                bestNormal = normals[at(inside)];
+                                fromRim = true;
+                            }
+                            continue;
+                        }
+                        if (rimA || std::min({a.x, a.y, b.x, b.y}) < 0 || std::max({a.x, a.y, b.x, b.y}) >= size) continue;
+                        if (normals[at(a)] == shared::kISMNoNormal || normals[at(b)] == shared::kISMNoNormal) continue;
+                        const float s = shared::ismGapCrossing(dJ, map[at(j)], direction(a), map[at(a)],
+                                                               normalOf(normals[at(a)]), direction(b), map[at(b)],
+                                                               normalOf(normals[at(b)]), angle, static_cast<float>(k), lift);
+                        if (s < best) {
+                            best = s;
+                            bestNormal = map[at(a)] <= map[at(b)] ? normals[at(a)] : normals[at(b)];
+                            fromRim = false;
+                        }
+                    }
+                const bool gap = shared::ismValid(best);
+                const float expected = gap ? best : map[at(j)];
+                const std::uint32_t expectedNormal = gap ? bestNormal : normals[at(j)];
+                filled += gap ? 1 : 0;
+                rimFilled += gap && fromRim ? 1 : 0;
+                differ += (std::memcmp(&expected, &result[at(j)], sizeof(float)) != 0 ||
+                           expectedNormal != resultNormals[at(j)])
+                              ? 1
+                              : 0;
+            }
+    }
+    std::printf("ISM gap filling vs CPU twin, sealed, 16 lights: %d texels filled (%d from the rim), %d differ\n",
+                filled, rimFilled, differ);
+    CHECK(filled > 16 * 20); // the sealed room's splats leave gaps (measured: see the printed line)
+    // Measured 0 on llvmpipe (the same arithmetic); a GPU's fused multiply-adds may move a crossing
+    // by an ulp, and a texel at the edge of a test then flips: a handful.
+    CHECK(differ <= test::twinTolerance(0, 16));
 }
 
 TEST_CASE("ISM: pull-push fills holes as its CPU twin does", "[gl][ism]")
