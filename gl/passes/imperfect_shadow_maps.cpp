@@ -110,28 +110,16 @@ ImperfectShadowMaps::ImperfectShadowMaps(const gl::ShaderLoader& shaders, const 
     mMaps = makeParaboloidMapAtlas("imperfect shadow maps", params.mapSize, maxLights, params.pullPushLevels + 1,
                                    mLayout);
     if (params.planes) {
-        gl::TextureDesc desc;
-        desc.target = GL_TEXTURE_2D_ARRAY;
-        desc.format = GL_R32UI;
-        desc.width = mLayout.layerSize;
-        desc.height = mLayout.layerSize;
-        desc.layers = mLayout.layers;
-        desc.levels = 1;
-        while (glGetError() != GL_NO_ERROR) {
-        }
-        mNormals = gl::Texture("imperfect shadow maps' normals", desc);
-        require(glGetError() != GL_OUT_OF_MEMORY, name + "the driver could not allocate the planes' normals (" +
-                                                      std::to_string(static_cast<long long>(mLayout.memoryMiB + 0.5)) +
-                                                      " MiB)");
-        const std::uint32_t none = shared::kISMNoNormal;
-        glClearTexImage(mNormals.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+        // The same layout (the same limits give the same layout); kISMNoNormal = 0xFFFFFFFF.
+        static_assert(shared::kISMNoNormal == 0xFFFFFFFFu, "the normals' atlas is cleared to all ones");
+        ShadowAtlasLayout same;
+        mNormals = makeParaboloidMapAtlas("imperfect shadow maps' normals", params.mapSize, maxLights, 1, same,
+                                          GL_R32UI);
         if (params.gapReach > 0) {
-            mGapNormals = gl::Texture("imperfect shadow maps' gap filling: normals", desc);
-            desc.format = GL_R32F;
-            mGapMaps = gl::Texture("imperfect shadow maps' gap filling: distances", desc);
-            require(glGetError() != GL_OUT_OF_MEMORY,
-                    name + "the driver could not allocate the gap filling's copies (" +
-                        std::to_string(static_cast<long long>(2 * mLayout.memoryMiB + 0.5)) + " MiB)");
+            mGapMaps = makeParaboloidMapAtlas("imperfect shadow maps' gap filling: distances", params.mapSize,
+                                              maxLights, 1, same);
+            mGapNormals = makeParaboloidMapAtlas("imperfect shadow maps' gap filling: normals", params.mapSize,
+                                                 maxLights, 1, same, GL_R32UI);
         }
     }
 

@@ -213,8 +213,9 @@ void ShadowAtlas::bindForReading() const
 }
 
 gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slots, int levels,
-                                   ShadowAtlasLayout& layout)
+                                   ShadowAtlasLayout& layout, GLenum format)
 {
+    require(format == GL_R32F || format == GL_R32UI, name + ": paraboloid map atlases are r32f or r32ui");
     const gl::Limits limits = gl::queryLimits();
     // 4 bytes per texel as the shadow atlas's DEPTH32F: its memory estimate holds for level 0.
     ShadowAtlasParams params;
@@ -225,7 +226,7 @@ gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slo
 
     gl::TextureDesc desc;
     desc.target = GL_TEXTURE_2D_ARRAY;
-    desc.format = GL_R32F;
+    desc.format = format;
     desc.width = layout.layerSize;
     desc.height = layout.layerSize;
     desc.layers = layout.layers;
@@ -238,8 +239,13 @@ gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slo
             name + ": the driver could not allocate " +
                 std::to_string(static_cast<long long>(layout.memoryMiB * mipFactor + 0.5)) + " MiB");
     const float none = shared::kVPLNoOccluder;
-    for (int level = 0; level < levels; ++level)
-        glClearTexImage(maps.id(), level, GL_RED, GL_FLOAT, &none);
+    const std::uint32_t allBits = 0xFFFFFFFFu;
+    for (int level = 0; level < levels; ++level) {
+        if (format == GL_R32F)
+            glClearTexImage(maps.id(), level, GL_RED, GL_FLOAT, &none);
+        else
+            glClearTexImage(maps.id(), level, GL_RED_INTEGER, GL_UNSIGNED_INT, &allBits);
+    }
     return maps;
 }
 

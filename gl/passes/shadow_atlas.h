@@ -129,8 +129,9 @@ private:
 // mapSize^2 tile per slot with the shadow atlas's addressing (one view per slot, chooseLayout's
 // limits), `levels` mip levels, every texel of every level cleared to shared::kVPLNoOccluder (a map
 // never written shadows nothing). `layout` receives the layout. Throws Error naming `name` when the
-// layout exceeds the GL limits or the driver cannot allocate it.
+// layout exceeds the GL limits or the driver cannot allocate it. With format GL_R32UI (per-texel
+// words in the same layout: the imperfect shadow maps' normals) every texel is 0xFFFFFFFF.
 gl::Texture makeParaboloidMapAtlas(const std::string& name, int mapSize, int slots, int levels,
-                                   ShadowAtlasLayout& layout);
+                                   ShadowAtlasLayout& layout, GLenum format = GL_R32F);
 
 } // namespace vplgi
