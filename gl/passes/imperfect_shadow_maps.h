@@ -58,20 +58,23 @@
 //  2^pullPushLevels texels stays empty (log2(mapSize) fills every hole of a map with any point).
 //  Defaults, measured against Embree per light-receiver pair (tests/gl/test_imperfect_shadow_maps.cpp,
 //  "ISM: visibility in the Cornell box*" and "ISM: the sealed room's*", which print every variant;
-//  the table is in docs/vsgl.md, "Imperfect shadow maps"): footprint splats at splatScale 1.25,
-//  stratified points, no pull-push. In the Cornell box 6.8% of the pairs disagree (one-texel points
+//  the tables are in docs/vsgl.md, "Imperfect shadow maps" and "... with planes"): footprint splats
+//  at splatScale 1.25, stratified points, no pull-push, planes (below: 5.4% of the Cornell pairs
+//  disagree, 0.44% of the sealed room's). With depth lookups, in the Cornell box 6.8% of the pairs disagree (one-texel points
 //  with 4 pull-push levels, the previous default: 13.9%; exact 64^2 maps: 3.9%); in the sealed room
 //  1.8% (17.6%), 1.4% lit though occluded (17.3%). Pull-push, once the splats close the holes, only
 //  adds false shadows (Cornell: 9.6% of the pairs disagree with 4 levels): it fills the directions
 //  with no surface (the box's open front) with the foreground's distance. Larger disks leak less
 //  and shadow more at silhouettes (they overhang a surface's edge by up to their radius): scale 2
 //  gives 1.0% false lit in the sealed room but -3.3% of visible light in the Cornell box; scale
-//  1.25 is where the image-level bias over the built-in scenes was smallest (docs/vsgl.md). The
-//  depth bias stays 0.1: 0.02 halves what still leaks in the sealed room (at the wall joints, where a
-//  receiver lies within 10% of its distance behind the wall) but adds false shadows in the box.
+//  1.25 is where the image-level bias over the built-in scenes was smallest (docs/vsgl.md). For depth
+//  lookups the depth bias stays 0.1: 0.02 halves what still leaks in the sealed room (at the wall
+//  joints, where a receiver lies within 10% of its distance behind the wall) but adds false shadows
+//  in the box; planes replace it.
 //  Cost: update() of 1024 lights x 8192 points at 64^2 took 175 ms on llvmpipe on an idle 2-core
-//  machine (splat 106, push 53, pull 14, clear 1 ms; 0.2-0.5 s while other builds shared it). The
-//  paper reports 8-12 ms for its AISMs on a 2011 GPU.
+//  machine with depth lookups (splat 106, push 53, pull 14, clear 1 ms); planes make the "shadow
+//  maps" pass 3.6x as long (the second splat pass, gap filling: docs/vsgl.md). The paper reports
+//  8-12 ms for its AISMs on a 2011 GPU.
 //  Planes (`planes`, ours): the splat runs twice; the second pass writes, into a second r32ui atlas,
 //  the packed normal of the point whose distance won each texel, and every texel a point writes holds
 //  the distance along the texel's central direction to the point's plane (unclamped, so that the
