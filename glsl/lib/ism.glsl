@@ -16,12 +16,11 @@ uniform float uISMLift;         // the plane rule's absolute margin [m]
 uniform float uISMEdgeMargin;   // the plane rule's margin at a surface's edge, relative to the distance
 uniform float uISMOverhang;     // the plane rule's cut: a hit up to this far behind a plane counts as in front [m] (the splats' radius)
 
-// Texel `texel` (in the tile) of light `light`'s map as the plane rule reads it: its central
-// direction (world), distance (kPlaneMapMiss when empty) and normal facing the light (a texel no
-// normal reached, filled by pull-push, counts as a plane facing the light).
-void ismPlaneTexel(int light, mat3 lightFrame, ivec2 texel, out vec3 direction, out float t, out vec3 normal)
+// Texel `texel` of a light's map (its tile at `tile`, shadowAtlasTileFromIndex) as the plane rule
+// reads it: its central direction (world), distance (kPlaneMapMiss when empty) and normal facing the
+// light (a texel no normal reached, filled by pull-push, counts as a plane facing the light).
+void ismPlaneTexel(ivec3 tile, mat3 lightFrame, ivec2 texel, out vec3 direction, out float t, out vec3 normal)
 {
-    ivec3 tile = shadowAtlasTileFromIndex(light, uISMTilesPerRow);
     ivec3 at = ivec3(tile.xy * uISMMapSize + texel, tile.z);
     direction = lightFrame * vplParaboloidTexelDirection(texel, uISMMapSize);
     float stored = texelFetch(uISMMaps, at, 0).r;
@@ -42,10 +41,11 @@ float ismVisibility(int light, vec3 lightPosition, vec3 lightNormal, vec3 x, vec
         ivec2 first = ismPlaneNeighbours(transpose(frame) * (toX / length(toX)), uISMMapSize, f);
         vec3 d0, d1, d2, d3, n0, n1, n2, n3;
         float t0, t1, t2, t3;
-        ismPlaneTexel(light, frame, first, d0, t0, n0);
-        ismPlaneTexel(light, frame, first + ivec2(1, 0), d1, t1, n1);
-        ismPlaneTexel(light, frame, first + ivec2(0, 1), d2, t2, n2);
-        ismPlaneTexel(light, frame, first + ivec2(1, 1), d3, t3, n3);
+        ivec3 tile = shadowAtlasTileFromIndex(light, uISMTilesPerRow);
+        ismPlaneTexel(tile, frame, first, d0, t0, n0);
+        ismPlaneTexel(tile, frame, first + ivec2(1, 0), d1, t1, n1);
+        ismPlaneTexel(tile, frame, first + ivec2(0, 1), d2, t2, n2);
+        ismPlaneTexel(tile, frame, first + ivec2(1, 1), d3, t3, n3);
         return planeMapVisibility(lightPosition, x, ng, uISMLift, ismPlaneTexelAngle(uISMMapSize), uISMOverhang,
                                   uISMEdgeMargin, f,
                                   d0, t0, n0, d1, t1, n1, d2, t2, n2, d3, t3, n3);
