@@ -203,8 +203,11 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
         glBindImageTexture(static_cast<GLuint>(shared::kImageISMNormals), mNormals.id(), 0, GL_TRUE, 0,
                            GL_READ_WRITE, GL_R32UI);
         splat.set("uPass", 1);
+        std::optional<gl::PassTimer::Scope> scope; // the second splat under its own name in the timings
+        if (timer) scope.emplace(*timer, "ISM splat normals");
         mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
-                        NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
+                        NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, nullptr);
+        scope.reset();
         if (mParams.gapReach > 0) fillGaps(lights, count, strideVec4, timer);
     }
 

@@ -268,7 +268,7 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
             mISM->setScene(*mScene);
         }
         // VSGLight: r^2 in the position's w (vec4 0), the valid flag in the normal's (vec4 1).
-        mISM->update(mLights, mCount, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1, 0);
+        mISM->update(mLights, mCount, static_cast<int>(sizeof(shared::VSGLight) / sizeof(glm::vec4)), 1, 0, &frame.timer);
     }
     {
         gl::PassTimer::Scope scope(frame.timer, "radiance estimation");
