@@ -209,8 +209,9 @@ SurfacePoint surfaceAt(const Scene& scene, const Hit& hit, const glm::vec3& towa
 }
 
 glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights, const SurfacePoint& point,
-                              const glm::vec3& wo)
+                              const glm::vec3& wo, std::uint64_t* shadowRays)
 {
+    std::uint64_t cast = 0;
     const glm::vec3 origin = point.position + point.geometricNormal * (1e-4f * rays.sceneScale());
     glm::vec3 radiance(0.0f);
     for (const shared::PointEmitter& e : lights.points) {
@@ -222,6 +223,7 @@ glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights
         if (cosine <= 0.0f) continue;
         float profile = shared::emitterProfile(e, -wi);
         if (profile <= 0.0f) continue;
+        ++cast;
         if (!rays.visible(origin, glm::vec3(e.positionProfile), Looker::End)) continue; // the light looks
         glm::vec3 f = shared::evaluateBRDF(point.material, point.normal, wo, wi);
         radiance += f * glm::vec3(e.intensity) * profile * cosine / distance2;
@@ -234,10 +236,12 @@ glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights
         shadow.origin = origin;
         shadow.direction = wi;
         shadow.tMin = 0.0f;
+        ++cast;
         if (rays.occluded(shadow, Looker::End)) continue; // the light looks
         glm::vec3 f = shared::evaluateBRDF(point.material, point.normal, wo, wi);
         radiance += f * glm::vec3(d.irradiance) * cosine;
     }
+    if (shadowRays) *shadowRays += cast;
     return radiance;
 }
 

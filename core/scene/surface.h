@@ -3,6 +3,7 @@
 // with Embree visibility. Used by image tests, the path tracer and VPL samplers.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -62,8 +63,9 @@ bool alphaMaskKeeps(const Scene& scene, const Material& m, const Mesh& mesh, int
 float alphaCoverage(const Scene& scene, const Material& m);
 
 // Reflected direct radiance towards `wo` (unit, away from the surface) from every emitter of the
-// set, with Embree shadow rays. Excludes the point's own emission.
+// set, with Embree shadow rays. Excludes the point's own emission. With `shadowRays`, adds the number
+// of shadow rays it cast there (the samplers' ray counts).
 glm::vec3 evaluateDirectLight(const RayScene& rays, const DirectLightSet& lights, const SurfacePoint& point,
-                              const glm::vec3& wo);
+                              const glm::vec3& wo, std::uint64_t* shadowRays = nullptr);
 
 } // namespace vplgi

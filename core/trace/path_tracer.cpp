@@ -470,25 +470,6 @@ glm::vec3 Integrator::sampleEmitters(const SurfacePoint& s, const glm::vec3& wo,
     return f * radiance * (cosSurface * weight / pdfLight);
 }
 
-// Shadow rays evaluateDirectLight casts for this point: it mirrors that function's early-outs
-// (light behind the shading normal, zero emission profile) so ray counts are exact.
-std::uint64_t countDirectLightRays(const DirectLightSet& lights, const SurfacePoint& point)
-{
-    std::uint64_t count = 0;
-    for (const shared::PointEmitter& e : lights.points) {
-        const glm::vec3 toLight = glm::vec3(e.positionProfile) - point.position;
-        const float distance2 = glm::dot(toLight, toLight);
-        if (!(distance2 > 0.0f)) continue;
-        const glm::vec3 wi = toLight / std::sqrt(distance2);
-        if (glm::dot(point.normal, wi) <= 0.0f) continue;
-        if (shared::emitterProfile(e, -wi) <= 0.0f) continue;
-        ++count;
-    }
-    for (const shared::DirectionalEmitter& d : lights.directionals)
-        if (glm::dot(point.normal, -glm::vec3(d.direction)) > 0.0f) ++count;
-    return count;
-}
-
 glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std::uint64_t* rays,
                             StartDirect* startDirect) const
 {
@@ -554,14 +535,12 @@ glm::vec3 Integrator::trace(Ray ray, const SurfacePoint* start, Pcg32& rng, std:
                 if (depth == 0 && start && startDirect) {
                     // The same deterministic value every path from this start would compute.
                     if (!startDirect->computed) {
-                        startDirect->value = evaluateDirectLight(mRays, mPunctual, s, wo);
+                        startDirect->value = evaluateDirectLight(mRays, mPunctual, s, wo, rays);
                         startDirect->computed = true;
-                        if (rays) *rays += countDirectLightRays(mPunctual, s);
                     }
                     direct += startDirect->value;
                 } else {
-                    direct += evaluateDirectLight(mRays, mPunctual, s, wo);
-                    if (rays) *rays += countDirectLightRays(mPunctual, s);
+                    direct += evaluateDirectLight(mRays, mPunctual, s, wo, rays);
                 }
             }
             radiance += throughput * direct;
