@@ -739,6 +739,16 @@ float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& para
     return static_cast<float>(std::round(raw / scale) * scale);
 }
 
+float resolveImportanceClamp(const Scene& scene, float clamp)
+{
+    if (clamp > 0.0f) return clamp;
+    const double area = sceneSurfaceArea(scene);
+    require(area > 0.0 && std::isfinite(area),
+            "lightskin: scene '" + scene.name + "' has no surface area for the automatic importance clamp");
+    constexpr double kStreetArea = 93148.0; // `street`'s surface [m^2]: the clamp is 1 m there
+    return static_cast<float>(std::sqrt(area / kStreetArea));
+}
+
 void buildLightCacheGrid(LightCacheSet& set, float cellSize)
 {
     require(cellSize > 0.0f && std::isfinite(cellSize), "light caches: grid cell size must be > 0");

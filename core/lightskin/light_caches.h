@@ -107,6 +107,16 @@ struct LightCacheSet {
 // Throws Error when the rule is needed and the scene has no triangle of positive area.
 float resolveLightCacheDistance(const Scene& scene, const LightCacheParams& params);
 
+// Eq. (11)'s clamp distance for `lightskin.importanceClamp` = `clamp`: clamp itself when > 0, else
+// the automatic rule (ours): the paper's 1 scene unit, taken as 1 m on a street scene like the
+// paper's (`street`: 93,148 m^2 of surface, whose automatic d_eps gives the paper's cache count),
+// scaled with the scene's linear size: sqrt(A / 93148 m^2) for surface area A. The same scene in
+// millimetres gets the same selection. Not the default (`lightskin.importanceClamp` 1, the paper's):
+// over 8 seeds it narrowed the seeds' spread on cornell and canyon but widened it 4x on maze, a
+// building in metres that it clamps at 0.2 m (docs/lightskin.md, "Scaling"). Throws Error when the
+// rule is needed and the scene has no triangle of positive area.
+float resolveImportanceClamp(const Scene& scene, float clamp);
+
 // Distributes caches over every instance's triangles (see "per model" above), with progress
 // ("lightskin caches", instances done / total), reading and writing the on-disk cache under
 // `cacheDir` ("" = no disk cache): cacheDir/lightskin/<hex>.bin per instance. A missing, corrupt,

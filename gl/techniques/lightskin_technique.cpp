@@ -45,8 +45,10 @@ void LightSkinParams::visitParams(ParamVisitor& v, bool selection)
         // loops after 65535 iterations in all (lightskin_proxy.comp).
         v.field("lightskin.viewSamples", viewSamples, 1, 32768,
                 "N_VS: Halton view samples of the importance, eq. (10) (section 4: 512; 256 as an option)");
-        v.field("lightskin.importanceClamp", importanceClamp, 1e-6f, 1e6f,
-                "eq. (11): the squared distance in the importance is clamped to at least clamp^2 [m] (the paper: 1)");
+        v.field("lightskin.importanceClamp", importanceClamp, 0.0f, 1e6f,
+                "eq. (11): the squared distance in the importance is clamped to at least clamp^2 [m] (the paper: 1); "
+                "0 = scaled with the scene: 1 m on a street like the paper's (our street's 93,148 m^2 of surface), "
+                "sqrt(A / 93148 m^2) for surface area A, e.g. for a scene in millimetres (ours; docs/lightskin.md)");
         v.field("lightskin.seed", seed, "seed of the selection");
         v.field("lightskin.animateSeed", animateSeed,
                 "new selection uniforms every frame (default: the same every frame)");
@@ -130,6 +132,7 @@ void LightSkinTechnique::setScene(const SceneContext& context)
     mShaded = gl::RenderTarget("LightSkin radiance", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"radiance"}));
     mCacheView = gl::RenderTarget("LightSkin caches", gl::RenderTargetDesc::colors({GL_RGBA32F}, {"caches"}));
     mCachesStale = true;
+    mAutomaticClamp = resolveImportanceClamp(context.scene, 0.0f);
     uploadCaches();
 }
 
@@ -269,7 +272,7 @@ void LightSkinTechnique::render(const FrameContext& frame, const GBuffer& gbuffe
             importance.set("uSize", size);
             importance.set("uLayers", layers);
             importance.set("uViewCount", mParams.viewSamples);
-            importance.set("uClampDistance", mParams.importanceClamp);
+            importance.set("uClampDistance", mParams.importanceClamp > 0.0f ? mParams.importanceClamp : mAutomaticClamp);
             mImportancePass.dispatch(size * layers, size, NextRead::Image);
         }
         {

@@ -76,7 +76,7 @@ namespace vplgi {
 struct LightSkinParams {
     int valCount = 2048;                               // N_sVAL (section 5: 2048, 4096, 8192)
     int viewSamples = 512;                             // N_VS (section 4: 512; 256 as an option)
-    float importanceClamp = 1.0f;                      // eq. (11): D(l) = max(clamp^2, |l|^2) [m] (the paper: 1)
+    float importanceClamp = 1.0f;                      // eq. (11): D(l) = max(clamp^2, |l|^2) [m] (the paper: 1); 0 = scaled with the scene (resolveImportanceClamp; ours)
     float weightEpsilon = shared::kProxyWeightEpsilon; // epsilon_p of eq. (6)
     bool fluxWeights = false;           // MATH.md 9.3: weight eq. (5)/(13) by the VAL's flux too (not in the paper)
     float interpolationExponent = 1.0f; // p of eq. (8) (the paper gives none; MATH.md 9.5)
@@ -169,6 +169,7 @@ private:
     std::vector<std::uint8_t> mInView; // per cache: 1 when the view culling keeps it (the traced occlusion's too)
     std::vector<glm::uvec2> mVisibilityMaps; // lightskin.visibilityMaps, cache after cache (traced_visibility.h)
     static constexpr std::size_t kMaxVisibilityMapBytes = std::size_t(1) << 30; // 1 GiB of GPU memory at most
+    float mAutomaticClamp = 1.0f; // eq. (11)'s automatic clamp distance on this scene [m] (resolveImportanceClamp)
     float mImportanceRange = 1.0f; // of the importance view: 20x the mean texel importance
 };
 

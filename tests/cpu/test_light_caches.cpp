@@ -737,6 +737,29 @@ TEST_CASE("light caches: the same bits at 1, 2 and 4 TBB threads", "[lightskin][
     }
 }
 
+TEST_CASE("light caches: the automatic importance clamp is 1 m on street and follows the scene's scale", "[lightskin][caches]")
+{
+    // resolveImportanceClamp: sqrt(A / 93148 m^2). street's surface is 93,147.5 m^2 (the counts
+    // table below), so its clamp is the paper's 1 m; float areas summed in double differ by < 1e-6.
+    const Scene street = makeBuiltinScene("street");
+    CHECK(resolveImportanceClamp(street, 0.0f) == Approx(1.0).epsilon(1e-5));
+    CHECK(resolveImportanceClamp(street, 0.25f) == 0.25f); // a clamp set by hand is used as it is
+    // The same scene in millimetres (every coordinate x 1000) gets 1000x the clamp, so eq. (11)
+    // weighs its VALs as the metre scene's; a fixed 1 would clamp at 1 mm there.
+    for (const char* name : {"cornell", "maze", "canyon"}) {
+        Scene scene = makeBuiltinScene(name);
+        const float metres = resolveImportanceClamp(scene, 0.0f);
+        for (Instance& instance : scene.instances)
+            instance.worldFromObject = glm::scale(glm::mat4(1.0f), glm::vec3(1000.0f)) * instance.worldFromObject;
+        INFO(name << ": " << metres << " m");
+        CHECK(metres > 0.0f);
+        CHECK(resolveImportanceClamp(scene, 0.0f) == Approx(1000.0 * metres).epsilon(1e-5));
+    }
+    Scene empty;
+    empty.name = "empty";
+    CHECK_THROWS_AS(resolveImportanceClamp(empty, 0.0f), Error);
+}
+
 TEST_CASE("light caches: counts and times of the built-in scenes", "[lightskin][numbers]")
 {
     // Prints the table the report quotes (times are printed, never asserted); checks what must hold
