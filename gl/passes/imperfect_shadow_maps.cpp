@@ -79,6 +79,10 @@ void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
             "with planes: a texel whose two opposite neighbours up to this many texels away saw one plane that its ray "
             "crosses before its own hit looked through a gap between splats and takes that plane; 0 = no gap filling "
             "(ours)");
+    v.field(prefix + "NearField", nearField, 0.0f, 8.0f,
+            "near field: every point of the scene's set within this x sqrt(area / points per map) of a light is "
+            "splatted into its map too, with the full set's smaller disks, so that the surfaces right around a light "
+            "(a wall beside it, a corner) have no gaps; 0 = none (ours)");
     v.field(prefix + "Seed", seed, "random stream of the surface points");
 }
 
@@ -154,6 +158,28 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
                    static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mParams.pointsPerMap)));
     // As LightSkin's lightCacheVisibilityLift: an absolute margin far below any wall's thickness.
     mLift = 1e-4f * glm::length(scene.worldBounds().extent());
+    mNearSlotCount = 0;
+    if (mParams.nearField > 0.0f && mPointCount > 0) {
+        // Near field: a light's own run holds one point per A / pointsPerMap, so the surfaces within a
+        // few such spacings of it (a wall beside it, a corner) are seen from so close that the run's
+        // disks leave gaps between them; every point of the whole set P there is splatted too.
+        mNearRadius = mParams.nearField * static_cast<float>(std::sqrt(sample.totalArea / mParams.pointsPerMap));
+        mNearSplatRadius = mParams.splatScale * static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mPointCount)));
+        mNearOrigin = scene.worldBounds().lower;
+        mNearSlotCount = 1;
+        while (mNearSlotCount < 2 * mPointCount && mNearSlotCount < (1 << 24)) mNearSlotCount *= 2;
+        std::vector<std::uint32_t> slotOf(packed.size()), start(static_cast<std::size_t>(mNearSlotCount) + 1, 0);
+        for (std::size_t i = 0; i < packed.size(); ++i) {
+            const glm::ivec3 cell(glm::floor((sample.positions[i] - mNearOrigin) / mNearRadius));
+            slotOf[i] = shared::ismNearSlot(cell, static_cast<std::uint32_t>(mNearSlotCount));
+            ++start[slotOf[i] + 1];
+        }
+        for (std::size_t s = 1; s < start.size(); ++s) start[s] += start[s - 1];
+        std::vector<std::uint32_t> indices(packed.size()), next(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < packed.size(); ++i) indices[next[slotOf[i]]++] = static_cast<std::uint32_t>(i);
+        mNearIndices = gl::Buffer("ISM near-field indices", static_cast<GLsizeiptr>(indices.size() * 4), indices.data(), false);
+        mNearSlots = gl::Buffer("ISM near-field slots", static_cast<GLsizeiptr>(start.size() * 4), start.data(), false);
+    }
 }
 
 void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int strideVec4, int validVec4,
@@ -193,9 +219,20 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uPlanes", mParams.planes ? 1 : 0);
     splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);
     splat.set("uPass", 0);
+    splat.set("uRunInvocations", (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation);
+    splat.set("uNearSlots", mNearSlotCount);
+    splat.set("uNearRadius", mNearRadius);
+    splat.set("uNearSplatRadius", mNearSplatRadius);
+    splat.set("uNearOrigin", mNearOrigin);
+    if (mNearSlotCount > 0) {
+        bindStorageBuffer(shared::kBindingISMNearIndices, mNearIndices);
+        bindStorageBuffer(shared::kBindingISMNearSlots, mNearSlots);
+    }
     // Pull reads the splat next (or the normals' pass); without pull-push the shading pass (or a
     // test's readback) does.
-    const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;
+    // The run's invocations, then with the near field 27 more per light: the 3^3 cells around it.
+    const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation +
+                                 (mNearSlotCount > 0 ? 27 : 0);
     mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
                     NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
     if (mParams.planes) {

@@ -59,8 +59,8 @@
 //  Defaults, measured against Embree per light-receiver pair (tests/gl/test_imperfect_shadow_maps.cpp,
 //  "ISM: visibility in the Cornell box*" and "ISM: the sealed room's*", which print every variant;
 //  the tables are in docs/vsgl.md, "Imperfect shadow maps" and "... with planes"): footprint splats
-//  at splatScale 1.25, stratified points, no pull-push, planes (below: 5.4% of the Cornell pairs
-//  disagree, 0.44% of the sealed room's). With depth lookups, in the Cornell box 6.8% of the pairs disagree (one-texel points
+//  at splatScale 1.25, stratified points, no pull-push, planes, the near field (below: 5.4% of the
+//  Cornell pairs disagree, 0.02% of the sealed room's; 0.44% without the near field). With depth lookups, in the Cornell box 6.8% of the pairs disagree (one-texel points
 //  with 4 pull-push levels, the previous default: 13.9%; exact 64^2 maps: 3.9%); in the sealed room
 //  1.8% (17.6%), 1.4% lit though occluded (17.3%). Pull-push, once the splats close the holes, only
 //  adds false shadows (Cornell: 9.6% of the pairs disagree with 4 levels): it fills the directions
@@ -96,6 +96,16 @@
 //  10% of its distance behind a wall count as lit, and the gaps between splats let light through the
 //  walls (the sealed room's closed side); measured per pair and per image in docs/vsgl.md,
 //  "Imperfect shadow maps with planes".
+//  Near field (`nearField`, ours): a light's run holds one point per A / pointsPerMap of surface, so
+//  the surfaces within a few such spacings of the light (the wall beside a light near a corner, seen
+//  from centimetres) fall between its disks, and what lies behind shows through: in the sealed room
+//  0.42% of the light-receiver pairs came out lit though occluded, at the corners. Every point of the
+//  whole set P within nearField x sqrt(A / pointsPerMap) of the light is splatted too, with the whole
+//  set's smaller disks (splatScale sqrt(A / (pi P))). The points are hashed by grid cells of that
+//  radius at setScene (glsl/shared/ism.h, ismNearSlot; a counting sort by slot); 27 more invocations
+//  per light each take one of the 3^3 cells around it. Sealed room: 0.0001 lit though occluded, 0.0002
+//  disagreeing (0.0042, 0.0044 without); Cornell 5.4% either way (tests/gl/test_imperfect_shadow_maps.cpp,
+//  whose CPU twin finds the near points by brute force). Images: docs/vsgl.md, "The near field".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB
@@ -140,6 +150,7 @@ struct ISMParams {
     bool planes = true;              // texels keep the winning point's plane; the lookup tests planes (ours)
     float edgeMargin = 0.1f;         // planes: margin beside a parallel step, relative to the distance (ours)
     int gapReach = 4;                // planes: gap filling from opposite neighbours up to this many texels away; 0 = none (ours)
+    float nearField = 2.5f;          // every point of P within this x sqrt(A / pointsPerMap) of a light is splatted too; 0 = none (ours)
     std::uint32_t seed = 1;          // the point set's random stream
 
     // Keys prefix + "Points", "PointsPerMap", "MapSize", "PullPushLevels", "PullPushDepthRange",
@@ -177,6 +188,9 @@ public:
     const gl::Texture& normals() const { return mNormals; }
     const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal
     float splatRadius() const { return mSplatRadius; }   // after setScene
+    // The near field's radius and its points' disk radius [m] (after setScene; 0 without a near field).
+    float nearRadius() const { return mNearSlotCount > 0 ? mNearRadius : 0.0f; }
+    float nearSplatRadius() const { return mNearSlotCount > 0 ? mNearSplatRadius : 0.0f; }
     int maxLights() const { return mMaxLights; }
 
 private:
@@ -197,6 +211,13 @@ private:
     gl::Buffer mPoints;
     int mPointCount = 0;
     float mSplatRadius = 0.0f; // world radius of a point's disk [m] (splatScale sqrt(A / (pi pointsPerMap)))
+    // Near field (params.nearField > 0): the points hashed by cells of edge mNearRadius (glsl/shared/ism.h,
+    // ismNearSlot), indices sorted by slot, each slot's first index.
+    gl::Buffer mNearIndices, mNearSlots;
+    float mNearRadius = 0.0f;     // [m]
+    float mNearSplatRadius = 0.0f; // splatScale sqrt(A / (pi P)) [m]
+    glm::vec3 mNearOrigin{0.0f};
+    int mNearSlotCount = 0;
     ComputePass mSplat;
     ComputePass mPull;
     ComputePass mPush;

@@ -59,49 +59,82 @@ void splatTexel(ivec3 texel, float distance, uint packedNormal)
         imageAtomicMin(uNormals, texel, packedNormal);
 }
 
+layout(std430, binding = kBindingISMNearIndices) readonly buffer NearIndices {
+    uint nearIndices[]; // the points' indices, slot by slot
+};
+layout(std430, binding = kBindingISMNearSlots) readonly buffer NearSlots {
+    uint nearSlots[]; // slot s's indices: nearSlots[s] .. nearSlots[s + 1] - 1
+};
+uniform int uRunInvocations; // invocations x < this splat the light's run; the next 27 its near field's cells
+uniform int uNearSlots;      // hash slots; 0: no near field
+uniform float uNearRadius;   // [m]
+uniform float uNearSplatRadius;
+uniform vec3 uNearOrigin;
+
+// One point into the light's map: its own texel, and with radius > 0 its disk's texels.
+void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, float ownRadius, ivec2 tileOrigin,
+                float radius)
+{
+    vec3 point = record.position;
+    ivec3 texel = ismSplatTexel(light, lightPosition, frame, point, uMapSize, uTilesPerRow);
+    if (texel.x < 0) return;
+    float pointDistance = length(point - lightPosition);
+    vec3 worldNormal = octDecode(unpackSnorm2x16(record.normalSnorm2x16));
+    if (pointDistance < ownRadius &&
+        (uOwnSurfaceOnly == 0 || ismOwnSurface(point - lightPosition, worldNormal, frame[2], ownRadius)))
+        return;
+    vec3 toPoint = transpose(frame) * (point - lightPosition);
+    float toPointLength = length(toPoint);
+    vec3 normal = transpose(frame) * worldNormal;
+    uint packedNormal = uPlanes != 0 ? ismPackNormal(worldNormal, point - lightPosition) : kISMNoNormal;
+    float centreDistance = uPlanes != 0 ? ismPlaneSplatDistance(toPoint, normal, kVPLNoOccluder,
+                                                                texel.xy - tileOrigin, uMapSize)
+                                        : pointDistance;
+    if (ismValid(centreDistance)) splatTexel(texel, centreDistance, packedNormal);
+    if (!(radius > 0.0)) return;
+    vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
+    mat2 ellipse = ismSplatEllipse(toPoint, normal, radius, uMapSize);
+    vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);
+    ivec2 lo = ismSplatFirstTexel(centre, extent), hi = ismSplatLastTexel(centre, extent, uMapSize);
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+            float distance = ismSplatDistance(toPoint, toPointLength, normal, radius, centre, ellipse, ivec2(x, y), uMapSize);
+            if (uPlanes != 0 && ismValid(distance))
+                distance = ismPlaneSplatDistance(toPoint, normal, radius, ivec2(x, y), uMapSize);
+            if (ismValid(distance)) splatTexel(ivec3(tileOrigin + ivec2(x, y), texel.z), distance, packedNormal);
+        }
+}
+
 void main()
 {
-    int first = int(gl_GlobalInvocationID.x) * ISM_POINTS_PER_INVOCATION;
+    int invocation = int(gl_GlobalInvocationID.x);
     int light = int(gl_GlobalInvocationID.y);
-    if (first >= uPointsPerMap || light >= uCount) return;
+    if (light >= uCount || invocation >= uRunInvocations + (uNearSlots > 0 ? 27 : 0)) return;
     if (lightRecords[light * uStride + uValidVec4].w == 0.0) return;
     vec4 positionValid = lightRecords[light * uStride];
     // A light with extent (a VSGL) is not shadowed by its own footprint, the surface it stands for.
     float ownRadius = uRadius2Vec4 >= 0 ? uOwnRadius * sqrt(max(lightRecords[light * uStride + uRadius2Vec4].w, 0.0)) : 0.0;
     mat3 frame = lightViewBasis(lightRecords[light * uStride + 1].xyz);
+    ivec2 tileOrigin = shadowAtlasTileFromIndex(light, uTilesPerRow).xy * uMapSize;
+    if (invocation >= uRunInvocations) {
+        // Near field: the points of cell (light's cell + offset) within uNearRadius of the light.
+        int c = invocation - uRunInvocations;
+        ivec3 cell = ivec3(floor((positionValid.xyz - uNearOrigin) / uNearRadius)) + ivec3(c % 3, (c / 3) % 3, c / 9) - ivec3(1);
+        uint slot = ismNearSlot(cell, uint(uNearSlots));
+        for (uint k = nearSlots[slot]; k < nearSlots[slot + 1u]; ++k) {
+            ISMPoint record = points[nearIndices[k]];
+            if (!(length(record.position - positionValid.xyz) < uNearRadius)) continue;
+            if (ivec3(floor((record.position - uNearOrigin) / uNearRadius)) != cell) continue; // another cell of the slot
+            splatPoint(record, light, positionValid.xyz, frame, ownRadius, tileOrigin, uNearSplatRadius);
+        }
+        return;
+    }
+    int first = invocation * ISM_POINTS_PER_INVOCATION;
+    if (first >= uPointsPerMap) return;
     // The C++ side keeps lights * pointsPerMap below 2^32.
     uint start = (uint(light) * uint(uPointsPerMap)) % uint(uPointCount);
     int last = min(first + ISM_POINTS_PER_INVOCATION, uPointsPerMap);
-    ivec2 tileOrigin = shadowAtlasTileFromIndex(light, uTilesPerRow).xy * uMapSize;
-    for (int k = first; k < last; ++k) {
-        ISMPoint record = points[(start + uint(k)) % uint(uPointCount)];
-        vec3 point = record.position;
-        ivec3 texel = ismSplatTexel(light, positionValid.xyz, frame, point, uMapSize, uTilesPerRow);
-        if (texel.x < 0) continue;
-        float pointDistance = length(point - positionValid.xyz);
-        vec3 worldNormal = octDecode(unpackSnorm2x16(record.normalSnorm2x16));
-        if (pointDistance < ownRadius &&
-            (uOwnSurfaceOnly == 0 || ismOwnSurface(point - positionValid.xyz, worldNormal, frame[2], ownRadius)))
-            continue;
-        vec3 toPoint = transpose(frame) * (point - positionValid.xyz);
-        float toPointLength = length(toPoint);
-        vec3 normal = transpose(frame) * worldNormal;
-        uint packedNormal = uPlanes != 0 ? ismPackNormal(worldNormal, point - positionValid.xyz) : kISMNoNormal;
-        float centreDistance = uPlanes != 0 ? ismPlaneSplatDistance(toPoint, normal, kVPLNoOccluder,
-                                                                    texel.xy - tileOrigin, uMapSize)
-                                            : pointDistance;
-        if (ismValid(centreDistance)) splatTexel(texel, centreDistance, packedNormal);
-        if (!(uSplatRadius > 0.0)) continue;
-        vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
-        mat2 ellipse = ismSplatEllipse(toPoint, normal, uSplatRadius, uMapSize);
-        vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);
-        ivec2 lo = ismSplatFirstTexel(centre, extent), hi = ismSplatLastTexel(centre, extent, uMapSize);
-        for (int y = lo.y; y <= hi.y; ++y)
-            for (int x = lo.x; x <= hi.x; ++x) {
-                float distance = ismSplatDistance(toPoint, toPointLength, normal, uSplatRadius, centre, ellipse, ivec2(x, y), uMapSize);
-                if (uPlanes != 0 && ismValid(distance))
-                    distance = ismPlaneSplatDistance(toPoint, normal, uSplatRadius, ivec2(x, y), uMapSize);
-                if (ismValid(distance)) splatTexel(ivec3(tileOrigin + ivec2(x, y), texel.z), distance, packedNormal);
-            }
-    }
+    for (int k = first; k < last; ++k)
+        splatPoint(points[(start + uint(k)) % uint(uPointCount)], light, positionValid.xyz, frame, ownRadius,
+                   tileOrigin, uSplatRadius);
 }

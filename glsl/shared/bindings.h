@@ -34,6 +34,8 @@ VPLGI_CONST int kBindingRSMLayers = 14;          // SSBO RSMLayerLight[] (glsl/s
 // Storage buffers of the imperfect shadow maps (gl/passes/imperfect_shadow_maps).
 VPLGI_CONST int kBindingISMPoints = 15;          // SSBO vec4[]: the scene's surface points (xyz)
 VPLGI_CONST int kBindingISMLights = 16;          // SSBO vec4[]: the lights' records (position+valid, normal, ...)
+VPLGI_CONST int kBindingISMNearIndices = 30;     // SSBO uint[]: the points' indices, hash slot by hash slot (near field)
+VPLGI_CONST int kBindingISMNearSlots = 31;       // SSBO uint[T + 1]: each hash slot's first index (near field)
 
 // Storage buffers of LightSkin (gl/techniques/lightskin_technique, glsl/shared/lightskin_gpu.h).
 VPLGI_CONST int kBindingLightCaches = 17;        // SSBO GpuLightCache[] (world space)

@@ -210,6 +210,15 @@ VPLGI_FUNC float ismPlaneSplatDistance(vec3 toPoint, vec3 normal, float reach, i
     return t;
 }
 
+// Near field (ours, `<technique>.ismNearField`): the hash slot of grid cell `cell` among `slotCount`
+// slots (a power of two), where the scene's points are listed by cell (gl/passes/imperfect_shadow_maps.cpp);
+// cells of one slot are told apart by the distance test that follows.
+VPLGI_FUNC uint ismNearSlot(ivec3 cell, uint slotCount)
+{
+    uint h = (uint(cell.x) * 73856093u) ^ (uint(cell.y) * 19349663u) ^ (uint(cell.z) * 83492791u);
+    return h & (slotCount - 1u);
+}
+
 // The packed normal a splat writes: unit `normal` (world) turned towards the light (a point's
 // geometric normal may face away: the far side of a wall is splatted too).
 VPLGI_FUNC uint ismPackNormal(vec3 normal, vec3 lightToPoint)
