@@ -219,7 +219,8 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uPlanes", mParams.planes ? 1 : 0);
     splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);
     splat.set("uPass", 0);
-    splat.set("uRunInvocations", (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation);
+    const int runInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;
+    splat.set("uRunInvocations", runInvocations);
     splat.set("uNearSlots", mNearSlotCount);
     splat.set("uNearRadius", mNearRadius);
     splat.set("uNearSplatRadius", mNearSplatRadius);
@@ -231,8 +232,7 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     // Pull reads the splat next (or the normals' pass); without pull-push the shading pass (or a
     // test's readback) does.
     // The run's invocations, then with the near field 27 more per light: the 3^3 cells around it.
-    const int splatInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation +
-                                 (mNearSlotCount > 0 ? 27 : 0);
+    const int splatInvocations = runInvocations + (mNearSlotCount > 0 ? 27 : 0);
     mSplat.dispatch(glm::ivec3(splatInvocations, count, 1),
                     NextRead::Image | NextRead::TextureFetch | NextRead::TextureReadback, timer);
     if (mParams.planes) {
