@@ -166,11 +166,14 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
         mNearRadius = mParams.nearField * static_cast<float>(std::sqrt(sample.totalArea / mParams.pointsPerMap));
         mNearSplatRadius = mParams.splatScale * static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mPointCount)));
         mNearOrigin = scene.worldBounds().lower;
+        // Cells a hair wider than the radius (1e-4): 1 / (1 / r) rounded may fall below r, and the 3^3
+        // cells around a light must hold every point within r of it.
+        mNearInverseEdge = 1.0f / (mNearRadius * 1.0001f);
         mNearSlotCount = 1;
         while (mNearSlotCount < 2 * mPointCount && mNearSlotCount < (1 << 24)) mNearSlotCount *= 2;
         std::vector<std::uint32_t> slotOf(packed.size()), start(static_cast<std::size_t>(mNearSlotCount) + 1, 0);
         for (std::size_t i = 0; i < packed.size(); ++i) {
-            const glm::ivec3 cell(glm::floor((sample.positions[i] - mNearOrigin) / mNearRadius));
+            const glm::ivec3 cell = shared::ismNearCell(sample.positions[i], mNearOrigin, mNearInverseEdge);
             slotOf[i] = shared::ismNearSlot(cell, static_cast<std::uint32_t>(mNearSlotCount));
             ++start[slotOf[i] + 1];
         }
@@ -225,6 +228,7 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uNearRadius", mNearRadius);
     splat.set("uNearSplatRadius", mNearSplatRadius);
     splat.set("uNearOrigin", mNearOrigin);
+    splat.set("uNearInverseEdge", mNearInverseEdge);
     if (mNearSlotCount > 0) {
         bindStorageBuffer(shared::kBindingISMNearIndices, mNearIndices);
         bindStorageBuffer(shared::kBindingISMNearSlots, mNearSlots);

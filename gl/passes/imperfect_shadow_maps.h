@@ -217,6 +217,7 @@ private:
     float mNearRadius = 0.0f;     // [m]
     float mNearSplatRadius = 0.0f; // splatScale sqrt(A / (pi P)) [m]
     glm::vec3 mNearOrigin{0.0f};
+    float mNearInverseEdge = 0.0f; // 1 / the cells' edge, a hair more than mNearRadius (ismNearCell)
     int mNearSlotCount = 0;
     ComputePass mSplat;
     ComputePass mPull;

@@ -70,6 +70,7 @@ uniform int uNearSlots;      // hash slots; 0: no near field
 uniform float uNearRadius;   // [m]
 uniform float uNearSplatRadius;
 uniform vec3 uNearOrigin;
+uniform float uNearInverseEdge; // 1 / uNearRadius: the grid's cells are uNearRadius wide (ismNearCell)
 
 // One point into the light's map: its own texel, and with radius > 0 its disk's texels.
 void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, float ownRadius, ivec2 tileOrigin,
@@ -119,12 +120,12 @@ void main()
     if (invocation >= uRunInvocations) {
         // Near field: the points of cell (light's cell + offset) within uNearRadius of the light.
         int c = invocation - uRunInvocations;
-        ivec3 cell = ivec3(floor((positionValid.xyz - uNearOrigin) / uNearRadius)) + ivec3(c % 3, (c / 3) % 3, c / 9) - ivec3(1);
+        ivec3 cell = ismNearCell(positionValid.xyz, uNearOrigin, uNearInverseEdge) + ivec3(c % 3, (c / 3) % 3, c / 9) - ivec3(1);
         uint slot = ismNearSlot(cell, uint(uNearSlots));
         for (uint k = nearSlots[slot]; k < nearSlots[slot + 1u]; ++k) {
             ISMPoint record = points[nearIndices[k]];
             if (!(length(record.position - positionValid.xyz) < uNearRadius)) continue;
-            if (ivec3(floor((record.position - uNearOrigin) / uNearRadius)) != cell) continue; // another cell of the slot
+            if (ismNearCell(record.position, uNearOrigin, uNearInverseEdge) != cell) continue; // another cell of the slot
             splatPoint(record, light, positionValid.xyz, frame, ownRadius, tileOrigin, uNearSplatRadius);
         }
         return;

@@ -210,7 +210,16 @@ VPLGI_FUNC float ismPlaneSplatDistance(vec3 toPoint, vec3 normal, float reach, i
     return t;
 }
 
-// Near field (ours, `<technique>.ismNearField`): the hash slot of grid cell `cell` among `slotCount`
+// Near field (ours, `<technique>.ismNearField`): the grid cell of world point `p`, cells of edge
+// 1 / `inverseEdge` from `origin`. The CPU's sort by cell and the splat's lookup must agree bit for
+// bit, so both call this one function, and it multiplies: GLSL rounds a subtraction and a product
+// as IEEE does, a division only within 2.5 ulp.
+VPLGI_FUNC ivec3 ismNearCell(vec3 p, vec3 origin, float inverseEdge)
+{
+    return ivec3(floor((p - origin) * inverseEdge));
+}
+
+// Near field: the hash slot of grid cell `cell` among `slotCount`
 // slots (a power of two), where the scene's points are listed by cell (gl/passes/imperfect_shadow_maps.cpp);
 // cells of one slot are told apart by the distance test that follows.
 VPLGI_FUNC uint ismNearSlot(ivec3 cell, uint slotCount)
