@@ -150,7 +150,7 @@ struct ISMParams {
     bool planes = true;              // texels keep the winning point's plane; the lookup tests planes (ours)
     float edgeMargin = 0.1f;         // planes: margin beside a parallel step, relative to the distance (ours)
     int gapReach = 4;                // planes: gap filling from opposite neighbours up to this many texels away; 0 = none (ours)
-    float nearField = 2.5f;          // every point of P within this x sqrt(A / pointsPerMap) of a light is splatted too; 0 = none (ours)
+    float nearField = 1.5f;          // every point of P within this x sqrt(A / pointsPerMap) of a light is splatted too; 0 = none (ours)
     std::uint32_t seed = 1;          // the point set's random stream
 
     // Keys prefix + "Points", "PointsPerMap", "MapSize", "PullPushLevels", "PullPushDepthRange",
