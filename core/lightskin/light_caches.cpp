@@ -53,11 +53,6 @@ struct CacheGeometry {
 };
 static_assert(sizeof(CacheGeometry) == 28, "seven floats per cache on disk");
 
-double triangleAreaWorld(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
-{
-    return 0.5 * glm::length(glm::cross(b - a, c - a));
-}
-
 // --- Step 1: voxelisation by clipping --------------------------------------------------------------
 
 using Polygon = std::vector<glm::dvec3>; // convex, planar, in fine-voxel coordinates
@@ -695,29 +690,6 @@ void writeInstanceFile(const std::filesystem::path& path, const std::string& key
         std::filesystem::remove(temporary, ec);
         warn(path.string() + ": cannot write the light cache file; continuing without it");
     }
-}
-
-// World-space area of every instance's triangles [m^2].
-double instanceSurfaceArea(const Scene& scene, const Instance& instance)
-{
-    double area = 0.0;
-    const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
-    const glm::dmat4 m(instance.worldFromObject);
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        glm::dvec3 p[3];
-        for (int k = 0; k < 3; ++k)
-            p[k] = glm::dvec3(
-                m * glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
-        area += triangleAreaWorld(p[0], p[1], p[2]);
-    }
-    return area;
-}
-
-double sceneSurfaceArea(const Scene& scene)
-{
-    double area = 0.0;
-    for (const Instance& instance : scene.instances) area += instanceSurfaceArea(scene, instance);
-    return area;
 }
 
 } // namespace

@@ -194,6 +194,28 @@ void generateTangents(Mesh& mesh, const TextureRef& normalTexture)
     mesh.hasTangents = true;
 }
 
+double instanceSurfaceArea(const Scene& scene, const Instance& instance)
+{
+    double area = 0.0;
+    const Mesh& mesh = scene.meshes[static_cast<std::size_t>(instance.mesh)];
+    const glm::dmat4 m(instance.worldFromObject);
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        glm::dvec3 p[3];
+        for (int k = 0; k < 3; ++k)
+            p[k] = glm::dvec3(
+                m * glm::dvec4(glm::dvec3(mesh.vertices[mesh.indices[t + static_cast<std::size_t>(k)]].position), 1.0));
+        area += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+    }
+    return area;
+}
+
+double sceneSurfaceArea(const Scene& scene)
+{
+    double area = 0.0;
+    for (const Instance& instance : scene.instances) area += instanceSurfaceArea(scene, instance);
+    return area;
+}
+
 Camera makeDefaultCamera(const AABB& bounds)
 {
     Camera camera;

@@ -191,6 +191,9 @@ void generateNormals(Mesh& mesh);
 void generateTangents(Mesh& mesh, const TextureRef& normalTexture = TextureRef{});
 // Camera placed to see the whole scene bounds (used when a scene has no camera).
 Camera makeDefaultCamera(const AABB& bounds);
+// World-space area of an instance's triangles, and of every instance's [m^2] (double sums).
+double instanceSurfaceArea(const Scene& scene, const Instance& instance);
+double sceneSurfaceArea(const Scene& scene);
 
 // Applies an animation at time t (clamped to its key range) to the scene's camera or light.
 void applyAnimation(Scene& scene, const Animation& animation, float time);

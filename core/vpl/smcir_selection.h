@@ -15,8 +15,10 @@
 //                  the VPLs kept because their radiance estimate came out high;
 //   density part   Phi[accurate L] / Phi_fresh - 1: their densities (kept because r_k came out high),
 //                  also with densities at 4 k (smooth: the set's real non-uniformity, not kNN noise);
-//   area           (1/n) sum 1/p_i = sum pi r_k^2 / k over a fresh set's: the area identity (on the
-//                  furnace, over the sphere's area 4 pi R^2).
+//   area           (1/n) sum 1/p_i = sum pi r_k^2 / k over a fresh set's; `vplgi smcir-selection` also
+//                  prints it over the scene's surface area, the area identity where the set covers
+//                  every surface (the furnace's sphere, 4 pi R^2; the fresh sets' own estimate there is
+//                  +0.5% above it).
 // Phi is also recorded after every frame for the drift: the mean of frames [0.9 N, N) over that of
 // [0.4 N, 0.5 N), minus 1 (frames counted from the first, warm-up included; conform's definition).
 #pragma once

@@ -38,6 +38,17 @@ TEST_CASE("world bounds follow instance transforms", "[scene]")
     CHECK(scene.triangleCount() == 1);
 }
 
+TEST_CASE("surface area sums every instance's triangles in world space", "[scene]")
+{
+    // Closed form: the right triangle of legs 1 has area 1/2; an instance scaled by 2 and 3 in x and
+    // y, 3; the translation changes nothing.
+    Scene scene = oneTriangleScene();
+    CHECK(instanceSurfaceArea(scene, scene.instances[0]) == Approx(0.5).epsilon(1e-12));
+    scene.instances.push_back(Instance{0, glm::scale(glm::mat4(1.0f), glm::vec3(2, 3, 5))});
+    CHECK(instanceSurfaceArea(scene, scene.instances[1]) == Approx(3.0).epsilon(1e-12));
+    CHECK(sceneSurfaceArea(scene) == Approx(3.5).epsilon(1e-12));
+}
+
 TEST_CASE("generated normals follow the winding and are unit length", "[scene]")
 {
     Scene scene = oneTriangleScene();
