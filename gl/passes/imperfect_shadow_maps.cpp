@@ -152,10 +152,13 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(ISMPointRecord)),
                          packed.data(), false);
     mPointCount = static_cast<int>(packed.size());
-    // Each light's run of pointsPerMap points is a uniform sample of the area: one point per
-    // A / pointsPerMap square metres, the disk of that area has radius sqrt(A / (pi pointsPerMap)).
-    mSplatRadius = mParams.splatScale *
-                   static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mParams.pointsPerMap)));
+    // n points sampled uniformly over the area A: one per A / n square metres, whose disk has radius
+    // sqrt(A / (pi n)); the splats are splatScale times that.
+    const auto diskRadius = [&](int n) {
+        return mParams.splatScale * static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * n)));
+    };
+    // Each light's run of pointsPerMap points is a uniform sample of the area.
+    mSplatRadius = diskRadius(mParams.pointsPerMap);
     // As LightSkin's lightCacheVisibilityLift: an absolute margin far below any wall's thickness.
     mLift = 1e-4f * glm::length(scene.worldBounds().extent());
     mNearSlotCount = 0;
@@ -164,7 +167,7 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
         // few such spacings of it (a wall beside it, a corner) are seen from so close that the run's
         // disks leave gaps between them; every point of the whole set P there is splatted too.
         mNearRadius = mParams.nearField * static_cast<float>(std::sqrt(sample.totalArea / mParams.pointsPerMap));
-        mNearSplatRadius = mParams.splatScale * static_cast<float>(std::sqrt(sample.totalArea / (3.14159265358979 * mPointCount)));
+        mNearSplatRadius = diskRadius(mPointCount);
         mNearOrigin = scene.worldBounds().lower;
         // Cells a hair wider than the radius (1e-4): 1 / (1 / r) rounded may fall below r, and the 3^3
         // cells around a light must hold every point within r of it.

@@ -60,7 +60,7 @@
 //  "ISM: visibility in the Cornell box*" and "ISM: the sealed room's*", which print every variant;
 //  the tables are in docs/vsgl.md, "Imperfect shadow maps" and "... with planes"): footprint splats
 //  at splatScale 1.25, stratified points, no pull-push, planes, the near field (below: 5.4% of the
-//  Cornell pairs disagree, 0.02% of the sealed room's; 0.44% without the near field). With depth lookups, in the Cornell box 6.8% of the pairs disagree (one-texel points
+//  Cornell pairs disagree, 0.03% of the sealed room's; 0.44% without the near field). With depth lookups, in the Cornell box 6.8% of the pairs disagree (one-texel points
 //  with 4 pull-push levels, the previous default: 13.9%; exact 64^2 maps: 3.9%); in the sealed room
 //  1.8% (17.6%), 1.4% lit though occluded (17.3%). Pull-push, once the splats close the holes, only
 //  adds false shadows (Cornell: 9.6% of the pairs disagree with 4 levels): it fills the directions
@@ -103,8 +103,8 @@
 //  whole set P within nearField x sqrt(A / pointsPerMap) of the light is splatted too, with the whole
 //  set's smaller disks (splatScale sqrt(A / (pi P))). The points are hashed by grid cells of that
 //  radius at setScene (glsl/shared/ism.h, ismNearSlot; a counting sort by slot); 27 more invocations
-//  per light each take one of the 3^3 cells around it. Sealed room: 0.0001 lit though occluded, 0.0002
-//  disagreeing (0.0042, 0.0044 without); Cornell 5.4% either way (tests/gl/test_imperfect_shadow_maps.cpp,
+//  per light each take one of the 3^3 cells around it. Sealed room at nearField 1.5: 0.0001 lit though
+//  occluded, 0.0003 disagreeing (0.0042, 0.0044 without); Cornell 5.4% either way (tests/gl/test_imperfect_shadow_maps.cpp,
 //  whose CPU twin finds the near points by brute force). Images: docs/vsgl.md, "The near field".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.

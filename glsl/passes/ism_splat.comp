@@ -70,7 +70,7 @@ uniform int uNearSlots;      // hash slots; 0: no near field
 uniform float uNearRadius;   // [m]
 uniform float uNearSplatRadius;
 uniform vec3 uNearOrigin;
-uniform float uNearInverseEdge; // 1 / uNearRadius: the grid's cells are uNearRadius wide (ismNearCell)
+uniform float uNearInverseEdge; // 1 / the grid cells' edge, a hair over uNearRadius (ismNearCell)
 
 // One point into the light's map: its own texel, and with radius > 0 its disk's texels.
 void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, float ownRadius, ivec2 tileOrigin,

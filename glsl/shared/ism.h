@@ -219,9 +219,9 @@ VPLGI_FUNC ivec3 ismNearCell(vec3 p, vec3 origin, float inverseEdge)
     return ivec3(floor((p - origin) * inverseEdge));
 }
 
-// Near field: the hash slot of grid cell `cell` among `slotCount`
-// slots (a power of two), where the scene's points are listed by cell (gl/passes/imperfect_shadow_maps.cpp);
-// cells of one slot are told apart by the distance test that follows.
+// Near field: the hash slot of grid cell `cell` among `slotCount` slots (a power of two), where the
+// scene's points are listed by cell (gl/passes/imperfect_shadow_maps.cpp); the cells that share a
+// slot are told apart by the splat's cell test.
 VPLGI_FUNC uint ismNearSlot(ivec3 cell, uint slotCount)
 {
     uint h = (uint(cell.x) * 73856093u) ^ (uint(cell.y) * 19349663u) ^ (uint(cell.z) * 83492791u);
