@@ -11,6 +11,7 @@
 #include "context.h"
 #include "core/util/error.h"
 #include "debug.h"
+#include "limits.h"
 
 namespace vplgi::gl {
 
@@ -184,6 +185,7 @@ void initializeCurrentContext(const ContextOptions& options)
     int version = epoxy_gl_version();
     require(version >= 45, "OpenGL 4.5 core required, the context has " + std::to_string(version / 10) + "." +
                                std::to_string(version % 10) + " (" + rendererName() + ")");
+    requireResourceLimits();
     if (options.debug) installDebugCallback(options.throwOnHighSeverity);
 }
 

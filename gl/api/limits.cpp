@@ -8,6 +8,7 @@
 #include <set>
 
 #include "context.h"
+#include "core/util/error.h"
 
 namespace vplgi::gl {
 
@@ -69,6 +70,81 @@ int clampShaderLoopCount(int value, const std::string& what, int iterationsPerUn
 const std::vector<std::string>& limitWarnings()
 {
     return gWarnings;
+}
+
+namespace {
+
+// Each limit once: its GL name, its enum and where it lives in ResourceCounts.
+struct LimitRow {
+    const char* name;
+    GLenum pname;
+    int ResourceCounts::*total;
+    StageResources ResourceCounts::*stage;
+    int StageResources::*count;
+};
+
+const LimitRow kLimitRows[] = {
+    {"GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS", GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &ResourceCounts::storageBufferBindings, nullptr, nullptr},
+    {"GL_MAX_UNIFORM_BUFFER_BINDINGS", GL_MAX_UNIFORM_BUFFER_BINDINGS, &ResourceCounts::uniformBufferBindings, nullptr, nullptr},
+    {"GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS", GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &ResourceCounts::textureUnits, nullptr, nullptr},
+    {"GL_MAX_IMAGE_UNITS", GL_MAX_IMAGE_UNITS, &ResourceCounts::imageUnits, nullptr, nullptr},
+    {"GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS", GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, nullptr, &ResourceCounts::vertex, &StageResources::storageBlocks},
+    {"GL_MAX_VERTEX_UNIFORM_BLOCKS", GL_MAX_VERTEX_UNIFORM_BLOCKS, nullptr, &ResourceCounts::vertex, &StageResources::uniformBlocks},
+    {"GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS", GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, nullptr, &ResourceCounts::vertex, &StageResources::samplers},
+    {"GL_MAX_VERTEX_IMAGE_UNIFORMS", GL_MAX_VERTEX_IMAGE_UNIFORMS, nullptr, &ResourceCounts::vertex, &StageResources::images},
+    {"GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS", GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, nullptr, &ResourceCounts::fragment, &StageResources::storageBlocks},
+    {"GL_MAX_FRAGMENT_UNIFORM_BLOCKS", GL_MAX_FRAGMENT_UNIFORM_BLOCKS, nullptr, &ResourceCounts::fragment, &StageResources::uniformBlocks},
+    {"GL_MAX_TEXTURE_IMAGE_UNITS", GL_MAX_TEXTURE_IMAGE_UNITS, nullptr, &ResourceCounts::fragment, &StageResources::samplers},
+    {"GL_MAX_FRAGMENT_IMAGE_UNIFORMS", GL_MAX_FRAGMENT_IMAGE_UNIFORMS, nullptr, &ResourceCounts::fragment, &StageResources::images},
+    {"GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS", GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, nullptr, &ResourceCounts::compute, &StageResources::storageBlocks},
+    {"GL_MAX_COMPUTE_UNIFORM_BLOCKS", GL_MAX_COMPUTE_UNIFORM_BLOCKS, nullptr, &ResourceCounts::compute, &StageResources::uniformBlocks},
+    {"GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS", GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, nullptr, &ResourceCounts::compute, &StageResources::samplers},
+    {"GL_MAX_COMPUTE_IMAGE_UNIFORMS", GL_MAX_COMPUTE_IMAGE_UNIFORMS, nullptr, &ResourceCounts::compute, &StageResources::images},
+};
+
+int& field(ResourceCounts& counts, const LimitRow& row)
+{
+    return row.total ? counts.*row.total : (counts.*row.stage).*row.count;
+}
+
+int field(const ResourceCounts& counts, const LimitRow& row)
+{
+    return row.total ? counts.*row.total : (counts.*row.stage).*row.count;
+}
+
+} // namespace
+
+ResourceCounts queryResourceLimits()
+{
+    ResourceCounts limits;
+    for (const LimitRow& row : kLimitRows) {
+        GLint value = 0;
+        glGetIntegerv(row.pname, &value);
+        field(limits, row) = value;
+    }
+    return limits;
+}
+
+std::vector<std::string> resourceShortfalls(const ResourceCounts& offered, const ResourceCounts& needed)
+{
+    std::vector<std::string> shortfalls;
+    for (const LimitRow& row : kLimitRows) {
+        if (field(offered, row) < field(needed, row)) {
+            shortfalls.push_back(std::string(row.name) + " is " + std::to_string(field(offered, row)) +
+                                 ", vplgi needs " + std::to_string(field(needed, row)));
+        }
+    }
+    return shortfalls;
+}
+
+void requireResourceLimits()
+{
+    const std::vector<std::string> shortfalls = resourceShortfalls(queryResourceLimits(), kResourceNeeds);
+    if (shortfalls.empty()) return;
+    std::string message = "this OpenGL implementation (" + rendererName() + ") offers too little for vplgi's shaders:";
+    for (std::size_t i = 0; i < shortfalls.size(); ++i)
+        message += (i ? "; " : " ") + shortfalls[i];
+    throw Error(message + " (gl/api/limits.h, kResourceNeeds)");
 }
 
 } // namespace vplgi::gl

@@ -40,4 +40,37 @@ int clampShaderLoopCount(int value, const std::string& what, int iterationsPerUn
 // Every warning printed so far in this process (tests check them).
 const std::vector<std::string>& limitWarnings();
 
+// Resources the shaders bind: binding points (one name per buffer and texture in
+// glsl/shared/bindings.h) and, per stage, what the busiest entry point's live code uses.
+struct StageResources {
+    int storageBlocks = 0; // GL_MAX_<STAGE>_SHADER_STORAGE_BLOCKS
+    int uniformBlocks = 0; // GL_MAX_<STAGE>_UNIFORM_BLOCKS
+    int samplers = 0;      // GL_MAX_<STAGE>_TEXTURE_IMAGE_UNITS (fragment: GL_MAX_TEXTURE_IMAGE_UNITS)
+    int images = 0;        // GL_MAX_<STAGE>_IMAGE_UNIFORMS
+};
+struct ResourceCounts {
+    int storageBufferBindings = 0; // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS
+    int uniformBufferBindings = 0; // GL_MAX_UNIFORM_BUFFER_BINDINGS
+    int textureUnits = 0;          // GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS
+    int imageUnits = 0;            // GL_MAX_IMAGE_UNITS
+    StageResources vertex, fragment, compute;
+};
+
+// What vplgi needs (issue 29 part 2). Every stage's count is within GL 4.5's guaranteed minimum but
+// the vertex stage's storage blocks (GL 4.5 guarantees none; every desktop driver offers them); the
+// storage buffer binding points, numbered up to 31 in bindings.h, exceed the guaranteed 8 (llvmpipe
+// offers 80). Kept exact by tests/shaders/validate_shaders.cpp, which counts the binding points in
+// bindings.h and each stage from glslangValidator's reflection of every entry point, and fails when a
+// number here differs from what it counts.
+constexpr ResourceCounts kResourceNeeds{32, 1, 28, 8, {2, 1, 0, 0}, {5, 1, 7, 0}, {7, 1, 7, 6}};
+
+// The current context's values of the limits above.
+ResourceCounts queryResourceLimits();
+// One phrase per limit that `offered` has below `needed`: "GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS is 16,
+// vplgi needs 32"; empty when everything fits.
+std::vector<std::string> resourceShortfalls(const ResourceCounts& offered, const ResourceCounts& needed);
+// Throws Error with one line naming every shortfall of the current context (called when a context
+// is made: a driver that offers less stops there, not at a link error or a silently unbound buffer).
+void requireResourceLimits();
+
 } // namespace vplgi::gl

@@ -362,3 +362,36 @@ TEST_CASE("ir: more VPLs than llvmpipe's loop budget are shaded as a subset, not
     CHECK(gl / traced == Approx(1.0).margin(0.005));
     CHECK(warned == llvmpipe);
 }
+
+TEST_CASE("resource limits: the context offers what the shaders bind, and a driver with less is named limit by limit",
+          "[limits]")
+{
+    // The real driver (llvmpipe here): every limit at or above gl::kResourceNeeds, which the shader
+    // validator keeps equal to what the shaders bind (tests/shaders/validate_shaders.cpp).
+    test::ensureGLContext();
+    const gl::ResourceCounts offered = gl::queryResourceLimits();
+    CHECK(offered.storageBufferBindings >= 8); // GL 4.5's guaranteed minimum: the query is real
+    CHECK(gl::resourceShortfalls(offered, gl::kResourceNeeds).empty());
+    CHECK_NOTHROW(gl::requireResourceLimits());
+
+    // A driver that offers GL 4.5's guaranteed minimum of storage buffer binding points (8) and no
+    // storage blocks in vertex shaders (also the minimum): two shortfalls, each naming its limit.
+    gl::ResourceCounts minimal = offered;
+    minimal.storageBufferBindings = 8;
+    minimal.vertex.storageBlocks = 0;
+    const std::vector<std::string> shortfalls = gl::resourceShortfalls(minimal, gl::kResourceNeeds);
+    REQUIRE(shortfalls.size() == 2);
+    CHECK(shortfalls[0] == "GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS is 8, vplgi needs 32");
+    CHECK(shortfalls[1] == "GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS is 0, vplgi needs 2");
+    // Every limit is compared: one below its need in each field gives one shortfall each (16).
+    gl::ResourceCounts below = gl::kResourceNeeds;
+    for (int* field : {&below.storageBufferBindings, &below.uniformBufferBindings, &below.textureUnits, &below.imageUnits})
+        *field -= 1;
+    for (gl::StageResources* stage : {&below.vertex, &below.fragment, &below.compute}) {
+        stage->storageBlocks -= 1;
+        stage->uniformBlocks -= 1;
+        stage->samplers -= 1;
+        stage->images -= 1;
+    }
+    CHECK(gl::resourceShortfalls(below, gl::kResourceNeeds).size() == 16);
+}

@@ -10,7 +10,13 @@
 //   vplgi_validate_shaders --glslang PATH --root GLSL_DIR [--define FILE:NAME[=VALUE]]... DIR...
 // Every .vert .tesc .tese .geom .frag .comp under each DIR is one entry point; FILE in --define is
 // its path relative to GLSL_DIR as the output shows it (the way the code names it when loading).
-// Exit status: 0 all valid, 1 some invalid, 2 bad usage or nothing to validate.
+// With --resource-needs it also counts what the application's shaders (those under GLSL_DIR) bind:
+// the binding points glsl/shared/bindings.h numbers and, per stage, the storage and uniform blocks,
+// samplers and images the busiest entry point's live code uses (glslangValidator -l -q's reflection),
+// and fails unless each equals gl::kResourceNeeds (gl/api/limits.h), which every context is checked
+// against when it is made.
+// Exit status: 0 all valid, 1 some invalid (or a resource count differs), 2 bad usage or nothing to
+// validate.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,6 +33,7 @@
 #include <vector>
 
 #include "core/util/error.h"
+#include "gl/api/limits.h"
 #include "gl/api/shader_loader.h"
 
 namespace fs = std::filesystem;
@@ -39,6 +46,7 @@ struct Options {
     std::string root;
     std::vector<std::string> directories;
     std::map<std::string, std::vector<std::string>> defines; // entry point -> NAME=VALUE list
+    bool resourceNeeds = false; // compare what the shaders bind with gl::kResourceNeeds
 };
 
 Options parseOptions(int argc, char** argv)
@@ -52,6 +60,8 @@ Options parseOptions(int argc, char** argv)
         };
         if (arg == "--glslang") {
             options.glslang = value();
+        } else if (arg == "--resource-needs") {
+            options.resourceNeeds = true;
         } else if (arg == "--root") {
             options.root = value();
         } else if (arg == "--define") {
@@ -67,7 +77,7 @@ Options parseOptions(int argc, char** argv)
         }
     }
     require(!options.glslang.empty() && !options.root.empty() && !options.directories.empty(),
-            "usage: vplgi_validate_shaders --glslang PATH --root GLSL_DIR [--define FILE:NAME[=VALUE]]... DIR...");
+            "usage: vplgi_validate_shaders --glslang PATH --root GLSL_DIR [--define FILE:NAME[=VALUE]]... [--resource-needs] DIR...");
     return options;
 }
 
@@ -137,6 +147,39 @@ std::string mapGlslangLog(const std::string& log, const gl::PreprocessedSource& 
     return mapped;
 }
 
+// What one stage uses of the per-stage resources GL limits (GL_MAX_<STAGE>_SHADER_STORAGE_BLOCKS,
+// _UNIFORM_BLOCKS, _TEXTURE_IMAGE_UNITS, _IMAGE_UNIFORMS), counted from glslangValidator's reflection
+// (`-l -q`: only what the entry point's live code reaches, as a driver counts it).
+// Parses `glslangValidator -l -q`'s reflection. Blocks are listed under "Uniform block reflection"
+// (storage blocks too, in Debian 12's glslang) or "Buffer block reflection"; a block is a storage
+// block when the source declares `buffer <Name>`. Opaque uniforms are the "Uniform reflection" rows
+// with a binding; GL's image types are 0x904C-0x906C, every other opaque type is a sampler.
+gl::StageResources countResources(const std::string& reflection, const std::string& source)
+{
+    gl::StageResources counts;
+    std::istringstream lines(reflection);
+    std::string line, section;
+    static const std::regex row(R"(^([A-Za-z_][A-Za-z0-9_.\[\]]*): offset (-?\d+), type ([0-9a-f]+), size (\d+),.* binding (-?\d+),)");
+    while (std::getline(lines, line)) {
+        if (!line.empty() && line.back() == ':' && line.find(' ') != std::string::npos) {
+            section = line;
+            continue;
+        }
+        std::smatch m;
+        if (!std::regex_search(line, m, row)) continue;
+        const std::string name = m[1].str();
+        if (section == "Uniform block reflection:" || section == "Buffer block reflection:") {
+            const std::regex declared("\\bbuffer\\s+" + name + "\\b");
+            (std::regex_search(source, declared) ? counts.storageBlocks : counts.uniformBlocks) += 1;
+        } else if (section == "Uniform reflection:" && std::stol(m[2].str()) == -1 && std::stol(m[5].str()) >= 0) {
+            const unsigned long type = std::stoul(m[3].str(), nullptr, 16);
+            const int units = std::stoi(m[4].str()); // an array of samplers takes one unit per element
+            (type >= 0x904C && type <= 0x906C ? counts.images : counts.samplers) += units;
+        }
+    }
+    return counts;
+}
+
 struct TempDirectory {
     fs::path path = fs::temp_directory_path() / ("vplgi-validate-shaders-" + std::to_string(::getpid()));
     TempDirectory() { fs::create_directories(path); }
@@ -146,6 +189,74 @@ struct TempDirectory {
         fs::remove_all(path, ignored);
     }
 };
+
+// The binding points glsl/shared/bindings.h numbers: one past the highest storage buffer, uniform
+// buffer, texture unit and image unit ("// 6 units: ..." after a name: it takes six from there). A
+// buffer binding's comment says which kind it is ("// SSBO ..." or "// UBO ...").
+gl::ResourceCounts countBindingPoints(const std::string& rootDirectory, std::vector<std::string>& problems)
+{
+    const fs::path path = fs::path(rootDirectory) / "shared" / "bindings.h";
+    std::ifstream file(path);
+    require(file.good(), path.string() + ": cannot read");
+    static const std::regex constant(R"(^VPLGI_CONST int k(Binding|Unit|Image)\w+ = (\d+);\s*(//\s*(.*))?$)");
+    static const std::regex span(R"(^(\d+) units)");
+    gl::ResourceCounts counts;
+    std::string line;
+    while (std::getline(file, line)) {
+        std::smatch m;
+        if (!std::regex_match(line, m, constant)) continue;
+        const std::string comment = m[4].str();
+        std::smatch s;
+        const int end = std::stoi(m[2].str()) + (std::regex_search(comment, s, span) ? std::stoi(s[1].str()) : 1);
+        int* count = nullptr;
+        if (m[1].str() == "Unit") {
+            count = &counts.textureUnits;
+        } else if (m[1].str() == "Image") {
+            count = &counts.imageUnits;
+        } else if (comment.rfind("SSBO", 0) == 0) {
+            count = &counts.storageBufferBindings;
+        } else if (comment.rfind("UBO", 0) == 0) {
+            count = &counts.uniformBufferBindings;
+        } else {
+            problems.push_back(path.string() + ": a buffer binding whose comment does not start with SSBO or UBO: " + line);
+            continue;
+        }
+        *count = std::max(*count, end);
+    }
+    return counts;
+}
+
+// Compares what was counted with gl::kResourceNeeds, row by row; prints the table.
+int checkResourceNeeds(const gl::ResourceCounts& counted, std::vector<std::string> problems)
+{
+    const gl::ResourceCounts& needs = gl::kResourceNeeds;
+    std::cout << "resources (counted here / gl::kResourceNeeds, gl/api/limits.h):\n";
+    auto row = [&](const std::string& what, int count, int need) {
+        std::cout << "  " << what << ": " << count << " / " << need << "\n";
+        if (count != need)
+            problems.push_back(what + ": counted " + std::to_string(count) + ", kResourceNeeds says " +
+                               std::to_string(need) + " (update gl/api/limits.h)");
+    };
+    row("storage buffer binding points", counted.storageBufferBindings, needs.storageBufferBindings);
+    row("uniform buffer binding points", counted.uniformBufferBindings, needs.uniformBufferBindings);
+    row("texture units", counted.textureUnits, needs.textureUnits);
+    row("image units", counted.imageUnits, needs.imageUnits);
+    const std::pair<const char*, gl::StageResources gl::ResourceCounts::*> stages[] = {
+        {"vertex", &gl::ResourceCounts::vertex}, {"fragment", &gl::ResourceCounts::fragment},
+        {"compute", &gl::ResourceCounts::compute}};
+    for (const auto& [name, stage] : stages) {
+        const gl::StageResources& c = counted.*stage;
+        const gl::StageResources& n = needs.*stage;
+        const std::string s = name;
+        row(s + " storage blocks", c.storageBlocks, n.storageBlocks);
+        row(s + " uniform blocks", c.uniformBlocks, n.uniformBlocks);
+        row(s + " samplers", c.samplers, n.samplers);
+        row(s + " images", c.images, n.images);
+    }
+    for (const std::string& p : problems)
+        std::cout << "FAIL " << p << "\n";
+    return problems.empty() ? 0 : 1;
+}
 
 int validate(const Options& options)
 {
@@ -158,6 +269,10 @@ int validate(const Options& options)
     gl::ShaderLoader loader(options.root);
     TempDirectory temp;
     int failures = 0;
+    // The busiest entry point per stage, over the application's shaders (those under --root; the
+    // tests' probes do not count).
+    std::vector<std::string> problems;
+    gl::ResourceCounts counted = options.resourceNeeds ? countBindingPoints(options.root, problems) : gl::ResourceCounts{};
     int index = 0;
     for (const std::string& file : files) {
         auto found = options.defines.find(file);
@@ -183,13 +298,38 @@ int validate(const Options& options)
             std::cout << "FAIL " << label << "\n"
                       << (log.empty() ? "  glslangValidator exit status " + std::to_string(run.status) + "\n" : log);
             ++failures;
-        } else {
-            std::cout << "ok   " << label << "\n" << log;
+            continue;
         }
+        RunResult reflected = runCommand(shellQuote(options.glslang) + " -l -q " + shellQuote(tempFile.string()));
+        if (reflected.status != 0) {
+            std::cout << "FAIL " << label << ": glslangValidator -l -q (reflection) exit status " << reflected.status
+                      << "\n" << reflected.output;
+            ++failures;
+            continue;
+        }
+        const gl::StageResources r = countResources(reflected.output, source.text);
+        std::cout << "ok   " << label << " (storage blocks " << r.storageBlocks << ", uniform blocks " << r.uniformBlocks
+                  << ", samplers " << r.samplers << ", images " << r.images << ")\n"
+                  << log;
+        const std::string stage = fs::path(file).extension().string();
+        gl::StageResources* most = stage == ".vert"   ? &counted.vertex
+                                   : stage == ".frag" ? &counted.fragment
+                                   : stage == ".comp" ? &counted.compute
+                                                      : nullptr;
+        if (file.rfind("../", 0) == 0) continue; // a test's probe, outside --root
+        if (!most) {
+            problems.push_back(file + ": a stage gl::kResourceNeeds does not cover");
+            continue;
+        }
+        most->storageBlocks = std::max(most->storageBlocks, r.storageBlocks);
+        most->uniformBlocks = std::max(most->uniformBlocks, r.uniformBlocks);
+        most->samplers = std::max(most->samplers, r.samplers);
+        most->images = std::max(most->images, r.images);
     }
     std::cout << files.size() - static_cast<std::size_t>(failures) << " of " << files.size()
               << " shader entry points valid (glslangValidator)\n";
-    return failures == 0 ? 0 : 1;
+    const int resources = options.resourceNeeds ? checkResourceNeeds(counted, problems) : 0;
+    return failures == 0 && resources == 0 ? 0 : 1;
 }
 
 } // namespace

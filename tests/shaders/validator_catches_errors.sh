@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Tests the shader-validation test: on a scratch shader tree, a deliberate error in an included file
 # must fail it and be reported at glsl/<included file>:<line>; a shader that needs a define must fail
-# without it and pass with it; an empty tree must not pass.
+# without it and pass with it; resource counts unlike gl::kResourceNeeds must fail --resource-needs;
+# an empty tree must not pass.
 #   usage: validator_catches_errors.sh <vplgi_validate_shaders> <glslangValidator>
 set -u
 validator="$1"
@@ -35,6 +36,17 @@ case "$out" in *"'VALUE' : undeclared identifier"*) ;; *) fail "the missing defi
 out=$(run --define passes/needs_define.comp:VALUE=1.0 "$work/glsl"); rc=$?
 echo "$out"
 [ "$rc" -eq 0 ] || fail "a valid tree gave exit status $rc, expected 0"
+
+# --resource-needs: this tree's counts (one storage block, binding 0; no bindings.h) are not
+# gl::kResourceNeeds, so the comparison must fail and say which number differs.
+mkdir -p "$work/glsl/shared"
+printf 'VPLGI_CONST int kBindingOut = 0; // SSBO float\n' > "$work/glsl/shared/bindings.h"
+out=$(run --define passes/needs_define.comp:VALUE=1.0 --resource-needs "$work/glsl"); rc=$?
+echo "$out"
+[ "$rc" -eq 1 ] || fail "resource counts unlike kResourceNeeds gave exit status $rc, expected 1"
+case "$out" in *"storage buffer binding points: 1 / "*) ;; *) fail "the binding points of the scratch bindings.h were not counted as 1" ;; esac
+case "$out" in *"compute storage blocks: 1 / "*) ;; *) fail "the scratch compute shader's storage block was not counted" ;; esac
+case "$out" in *"FAIL compute storage blocks: counted 1, kResourceNeeds says"*) ;; *) fail "the differing count is not named" ;; esac
 
 out=$(run "$work/empty"); rc=$?
 echo "$out"
