@@ -30,6 +30,14 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, Kind kind)
         v.field(p + ".maxLeaf", maxLeaf, 0, 12,
                 "cell footprints: the coarsest mip level a leaf may have, 2 = at most 4 x 4 RSM texels (not in "
                 "the paper; a cap keeps the partition, so the estimator stays unbiased; docs/vsgl.md); 12: no cap");
+        v.field(p + ".leafEdges", leafEdges,
+                "cell footprints: a leaf holds no two neighbouring RSM texels on different surfaces (geometric "
+                "normals over 30 degrees apart, or off each other's plane); monotone up the mip chain, so the "
+                "leaves stay a partition (not in the paper; docs/vsgl.md)");
+        v.choice(p + ".leafReads", leafReads, {"bilinear", "cell", "surface"},
+                 "cell footprints: position, normal, spread and lobes bilinear at the leaf's level (smooth in the "
+                 "draw, blending the neighbouring cells in), the leaf cell's own as its flux, or bilinear over the "
+                 "cells on the leaf's surface only (not in the paper; docs/vsgl.md)");
         v.field(p + ".biasAlpha", biasAlpha, 0.0f, 1e6f,
                 "alpha of the consistent bias reduction (section 3.3; Fig. 6: 0.001); 0 = keep the SG approximation");
     } else {
@@ -252,6 +260,8 @@ void VSGLTechnique::render(const FrameContext& frame, const GBuffer& gbuffer, co
         generate.set("uSmoothness", mParams.smoothness);
         generate.set("uFootprint", cells ? 1 : 0);
         generate.set("uMaxLeaf", mParams.maxLeaf);
+        generate.set("uLeafEdges", cells && mParams.leafEdges ? 1 : 0);
+        generate.set("uLeafReads", cells ? mParams.leafReads : 0);
         generate.set("uLayers", layers);
         glBindTextureUnit(static_cast<GLuint>(shared::kUnitImportanceMips), mImportance.id());
         glBindSampler(static_cast<GLuint>(shared::kUnitImportanceMips), mTrilinear.id());

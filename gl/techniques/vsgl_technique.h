@@ -89,6 +89,14 @@ struct VSGLParams {
     // and carried a sunlit roof's exact flux into the room below it (sealed room +28%); measured
     // over 8 seeds in docs/vsgl.md, "Leaves capped".
     int maxLeaf = 2;
+    // Cell footprints: leaves stop before a geometric edge inside them (ours; passes/vsgl_generate.comp,
+    // leafHasEdge; docs/vsgl.md, "Leaves stop at edges").
+    bool leafEdges = true;
+    // Cell footprints: position, normal, spread and lobes bilinear at the leaf's level (Bilinear),
+    // the leaf cell's own as its flux always is (LeafCell), or bilinear over the neighbouring cells on
+    // the leaf's surface only (Surface) (ours; passes/vsgl_generate.comp; docs/vsgl.md).
+    enum LeafReads { Bilinear, LeafCell, Surface };
+    int leafReads = Surface;
     float clampGeometry = 0.0f; // vpl-brsm: cap on cos cos / d^2 [1/m^2]; 0 = none (the paper's VPL figures)
     // The PDF of BRSMs (passes/vsgl_importance.comp): SG, the VSGL paper's (section 3: "in the same
     // fashion as VSGLs"); Point, the original BRSM's point-to-point formula (MATH.md 10.1), Fig. 4a.

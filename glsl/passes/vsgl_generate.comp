@@ -47,9 +47,86 @@ uniform int uLevel;        // uMode 2: the level whose texels are lights
 uniform float uSmoothness; // k
 uniform int uFootprint;    // uMode 0: 0 texel (the paper's reading), 1 cell (see the file head)
 uniform int uLayers;       // uMode 0: RSM layers (side by side in the importance map)
+uniform int uLeafEdges;    // uFootprint 1: 1 = a leaf holds no geometric edge (vsgl.leafEdges, see leafHasEdge)
+uniform int uLeafReads;    // uFootprint 1: position, normal and lobes at the leaf's level: 0 bilinear, 1 the leaf cell's own, 2 bilinear over the leaf's surface (surfaceBlend)
+
+// The geometric normal n_g of a level-0 RSM texel (octahedral in the flux's and diffuse's w).
+vec3 geometricNormal(ivec3 texel)
+{
+    return octDecode(vec2(texelFetch(uSource[kRSMFlux], texel, 0).w, texelFetch(uSource[kRSMDiffuse], texel, 0).w));
+}
+
+// Two neighbouring level-0 texels on different surfaces: both covered, and their geometric normals
+// more than 30 degrees apart (a corner: floor and wall) or the second off the first's plane by more
+// than half their distance (a step: a wall's top and the floor below it). Not in the paper.
+bool edgeBetween(ivec3 a, ivec3 b)
+{
+    if (!(texelFetch(uSource[kRSMNormal], a, 0).w > 0.0) || !(texelFetch(uSource[kRSMNormal], b, 0).w > 0.0)) return false;
+    vec3 na = geometricNormal(a), nb = geometricNormal(b);
+    vec3 d = texelFetch(uSource[kRSMPosition], b, 0).xyz - texelFetch(uSource[kRSMPosition], a, 0).xyz;
+    return dot(na, nb) < 0.8660254 || abs(dot(d, na)) > 0.5 * length(d);
+}
+
+// vsgl.leafEdges (ours, not in the paper): does the level-l cell at `cell` (in level-l texels of
+// `layer`) hold two neighbouring texels on different surfaces? Every pair of neighbours inside the
+// cell is tested, so a cell with an edge has parents with that edge: the property is monotone up the
+// chain, as N P_cell <= k is, and the leaves stay a partition. A footprint across an edge would put
+// a light between two surfaces with the spread of both (docs/vsgl.md, "Leaves stop at edges").
+bool leafHasEdge(ivec2 cell, int l, int layer)
+{
+    int side = 1 << l;
+    ivec2 origin = cell * side;
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            ivec3 t = ivec3(origin + ivec2(x, y), layer);
+            if (x + 1 < side && edgeBetween(t, t + ivec3(1, 0, 0))) return true;
+            if (y + 1 < side && edgeBetween(t, t + ivec3(0, 1, 0))) return true;
+        }
+    return false;
+}
+
+// uLeafReads 1 and 2: the leaf cell (uFootprint 1), and for 2 the bilinear cells around the draw at
+// the leaf's level with their weights, those on another surface than the leaf at weight 0.
+ivec2 gLeafCell = ivec2(-1);
+ivec2 gCells[4];
+vec4 gWeights = vec4(0.0);
+
+// uLeafReads 2: the bilinear blend GL's textureLod makes at `level` (clamp to edge), less the cells
+// that hold no surface, hold an edge themselves (leafHasEdge), or lie on another surface than the
+// leaf cell by their means (normals over 30 degrees apart or off the leaf's plane by over half their
+// distance, as edgeBetween); the rest renormalised. The leaf cell keeps its weight (>= 1/4: the draw
+// lies in it).
+void surfaceBlend(vec2 uv, int level, int layer)
+{
+    int n = max(uSize >> level, 1);
+    vec2 t = uv * float(n) - 0.5;
+    ivec2 i0 = ivec2(floor(t));
+    vec2 f = t - floor(t);
+    vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    vec3 leafPosition = texelFetch(uSource[kRSMPosition], ivec3(gLeafCell, layer), level).xyz;
+    vec3 leafNormal = normalize(texelFetch(uSource[kRSMNormal], ivec3(gLeafCell, layer), level).xyz);
+    for (int k = 0; k < 4; ++k) {
+        gCells[k] = clamp(i0 + ivec2(k & 1, k >> 1), ivec2(0), ivec2(n - 1));
+        if (gCells[k] == gLeafCell) continue;
+        vec4 normal = texelFetch(uSource[kRSMNormal], ivec3(gCells[k], layer), level);
+        vec3 d = texelFetch(uSource[kRSMPosition], ivec3(gCells[k], layer), level).xyz - leafPosition;
+        bool same = normal.w > 0.0 && dot(normal.xyz, normal.xyz) > 0.0 &&
+                    dot(leafNormal, normalize(normal.xyz)) >= 0.8660254 && abs(dot(d, leafNormal)) <= 0.5 * length(d) &&
+                    !leafHasEdge(gCells[k], level, layer); // a cell holding part of another surface is not one
+        if (!same) w[k] = 0.0;
+    }
+    gWeights = w / (w.x + w.y + w.z + w.w);
+}
 
 vec4 fetch(int a, vec3 uvLayer, float level, bool filtered, ivec3 texel)
 {
+    if (uLeafReads == 1 && gLeafCell.x >= 0) return texelFetch(uSource[a], ivec3(gLeafCell, texel.z), int(level));
+    if (uLeafReads == 2 && gLeafCell.x >= 0) {
+        vec4 sum = vec4(0.0);
+        for (int k = 0; k < 4; ++k)
+            if (gWeights[k] > 0.0) sum += gWeights[k] * texelFetch(uSource[a], ivec3(gCells[k], texel.z), int(level));
+        return sum;
+    }
     return filtered ? textureLod(uSource[a], uvLayer, level) : texelFetch(uSource[a], texel, int(level));
 }
 
@@ -95,6 +172,7 @@ void main()
                 for (int l = 1; l < min(uLevels, uMaxLeaf + 1); ++l) {
                     float cell = texelFetch(uImportanceMips, ivec2(s.x, s.y) >> l, l).r * toProbability * exp2(2.0 * float(l));
                     if (!(float(uCount) * cell <= uSmoothness)) break;
+                    if (uLeafEdges != 0 && leafHasEdge(ivec2(texel.xy) >> l, l, texel.z)) break;
                     leaf = l;
                 }
                 level = float(leaf);
@@ -104,10 +182,12 @@ void main()
                 float probability = texelFetch(uImportanceMips, leafCell, leaf).r * toProbability;
                 if (probability > 0.0) fluxScale = 1.0 / (float(uCount) * probability);
                 leafCell = ivec2(texel.xy) >> leaf; // the same cell in the RSM layer
+                gLeafCell = leafCell;
             }
         }
     }
     vec3 uvLayer = vec3((vec2(texel.xy) + 0.5) / float(uSize), float(texel.z));
+    if (uLeafReads == 2 && gLeafCell.x >= 0) surfaceBlend(uvLayer.xy, int(level), texel.z);
     vec4 position = fetch(kRSMPosition, uvLayer, level, filtered, texel);
     vec4 normal = fetch(kRSMNormal, uvLayer, level, filtered, texel);
     vec4 flux = leafCell.x >= 0 ? texelFetch(uSource[kRSMFlux], ivec3(leafCell, texel.z), int(level))
