@@ -18,7 +18,10 @@
 //    it over every texel of a concentrated importance map). An earlier version read both bilinearly
 //    at the leaf's level (smooth in the draw, but -6% to -47% where importance is concentrated:
 //    issue "VSGL made exact"). Position, radius, normal and lobes stay bilinear at the leaf's level:
-//    they move smoothly with the draw and carry no 1/P. Leaves stop at level uMaxLeaf (vsgl.maxLeaf,
+//    they move smoothly with the draw and carry no 1/P; with uLeafReads 2 (vsgl.leafReads = surface,
+//    ours, the default) only over the neighbouring cells on the leaf's own surface (surfaceBlend),
+//    and with uLeafEdges (vsgl.leafEdges) no leaf holds a geometric edge (leafHasEdge; docs/vsgl.md,
+//    "Leaves stop at edges"). Leaves stop at level uMaxLeaf (vsgl.maxLeaf,
 //    ours, default 2 = 4x4 texels): the cells of one level are a partition too, so the cap costs no
 //    bias, and it keeps a leaf from carrying, say, a sunlit roof's flux into the room below it
 //    (docs/vsgl.md, "VSGL made exact": sealed room +28% uncapped, -4% capped).
