@@ -33,7 +33,7 @@ void VSGLParams::visitParams(ParamVisitor& v, const std::string& p, Kind kind)
         v.field(p + ".leafEdges", leafEdges,
                 "cell footprints: a leaf holds no two neighbouring RSM texels on different surfaces (geometric "
                 "normals over 30 degrees apart, or off each other's plane); monotone up the mip chain, so the "
-                "leaves stay a partition (not in the paper; docs/vsgl.md)");
+                "leaves stay a partition; leaves then stop at 32 x 32 texels (not in the paper; docs/vsgl.md)");
         v.choice(p + ".leafReads", leafReads, {"bilinear", "cell", "surface"},
                  "cell footprints: position, normal, spread and lobes bilinear at the leaf's level (smooth in the "
                  "draw, blending the neighbouring cells in), the leaf cell's own as its flux, or bilinear over the "

@@ -53,6 +53,8 @@ uniform int uLayers;       // uMode 0: RSM layers (side by side in the importanc
 uniform int uLeafEdges;    // uFootprint 1: 1 = a leaf holds no geometric edge (vsgl.leafEdges, see leafHasEdge)
 uniform int uLeafReads;    // uFootprint 1: position, normal and lobes at the leaf's level: 0 bilinear, 1 the leaf cell's own, 2 bilinear over the leaf's surface (surfaceBlend)
 
+const int kLeafEdgeMaxLevel = 5; // leafHasEdge scans cells of at most 32x32 texels
+
 // The geometric normal n_g of a level-0 RSM texel (octahedral in the flux's and diffuse's w).
 vec3 geometricNormal(ivec3 texel)
 {
@@ -77,6 +79,11 @@ bool edgeBetween(ivec3 a, ivec3 b)
 // a light between two surfaces with the spread of both (docs/vsgl.md, "Leaves stop at edges").
 bool leafHasEdge(ivec2 cell, int l, int layer)
 {
+    // Cells above 32x32 texels count as holding an edge (monotone too): the scan of a level-l cell
+    // is 4^l texels, and llvmpipe ends an invocation's loops after 65535 iterations in all
+    // (gl/api/limits.h); with these, at most 1364 + 3 x 1024 (surfaceBlend's neighbours). Only
+    // vsgl.maxLeaf > 5 reaches it.
+    if (l > kLeafEdgeMaxLevel) return true;
     int side = 1 << l;
     ivec2 origin = cell * side;
     for (int y = 0; y < side; ++y)
