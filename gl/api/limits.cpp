@@ -102,12 +102,9 @@ const LimitRow kLimitRows[] = {
     {"GL_MAX_COMPUTE_IMAGE_UNIFORMS", GL_MAX_COMPUTE_IMAGE_UNIFORMS, nullptr, &ResourceCounts::compute, &StageResources::images},
 };
 
-int& field(ResourceCounts& counts, const LimitRow& row)
-{
-    return row.total ? counts.*row.total : (counts.*row.stage).*row.count;
-}
-
-int field(const ResourceCounts& counts, const LimitRow& row)
+// The row's number in `counts` (a reference: const or not, as `counts`).
+template <typename Counts>
+auto& field(Counts& counts, const LimitRow& row)
 {
     return row.total ? counts.*row.total : (counts.*row.stage).*row.count;
 }

@@ -62,14 +62,12 @@ vec3 geometricNormal(ivec3 texel)
 }
 
 // Two neighbouring level-0 texels on different surfaces: both covered, and their geometric normals
-// more than 30 degrees apart (a corner: floor and wall) or the second off the first's plane by more
-// than half their distance (a step: a wall's top and the floor below it). Not in the paper.
+// and positions apart by rsmSurfacesDiffer (shared/rsm.h). Not in the paper.
 bool edgeBetween(ivec3 a, ivec3 b)
 {
     if (!(texelFetch(uSource[kRSMNormal], a, 0).w > 0.0) || !(texelFetch(uSource[kRSMNormal], b, 0).w > 0.0)) return false;
-    vec3 na = geometricNormal(a), nb = geometricNormal(b);
     vec3 d = texelFetch(uSource[kRSMPosition], b, 0).xyz - texelFetch(uSource[kRSMPosition], a, 0).xyz;
-    return dot(na, nb) < 0.8660254 || abs(dot(d, na)) > 0.5 * length(d);
+    return rsmSurfacesDiffer(geometricNormal(a), geometricNormal(b), d);
 }
 
 // vsgl.leafEdges (ours, not in the paper): does the level-l cell at `cell` (in level-l texels of
@@ -95,16 +93,16 @@ bool leafHasEdge(ivec2 cell, int l, int layer)
     return false;
 }
 
-// uLeafReads 1 and 2: the leaf cell (uFootprint 1), and for 2 the bilinear cells around the draw at
-// the leaf's level with their weights, those on another surface than the leaf at weight 0.
+// uFootprint 1: the leaf cell at the light's level (RSM layer texels), whose flux is read exactly;
+// uLeafReads 2: the bilinear cells around the draw at that level with their weights, those on
+// another surface than the leaf at weight 0.
 ivec2 gLeafCell = ivec2(-1);
 ivec2 gCells[4];
 vec4 gWeights = vec4(0.0);
 
 // uLeafReads 2: the bilinear blend GL's textureLod makes at `level` (clamp to edge), less the cells
 // that hold no surface, hold an edge themselves (leafHasEdge), or lie on another surface than the
-// leaf cell by their means (normals over 30 degrees apart or off the leaf's plane by over half their
-// distance, as edgeBetween); the rest renormalised. The leaf cell keeps its weight (>= 1/4: the draw
+// leaf cell by their means (rsmSurfacesDiffer, as edgeBetween); the rest renormalised. The leaf cell keeps its weight (>= 1/4: the draw
 // lies in it).
 void surfaceBlend(vec2 uv, int level, int layer)
 {
@@ -121,7 +119,7 @@ void surfaceBlend(vec2 uv, int level, int layer)
         vec4 normal = texelFetch(uSource[kRSMNormal], ivec3(gCells[k], layer), level);
         vec3 d = texelFetch(uSource[kRSMPosition], ivec3(gCells[k], layer), level).xyz - leafPosition;
         bool same = normal.w > 0.0 && dot(normal.xyz, normal.xyz) > 0.0 &&
-                    dot(leafNormal, normalize(normal.xyz)) >= 0.8660254 && abs(dot(d, leafNormal)) <= 0.5 * length(d) &&
+                    !rsmSurfacesDiffer(leafNormal, normalize(normal.xyz), d) &&
                     !leafHasEdge(gCells[k], level, layer); // a cell holding part of another surface is not one
         if (!same) w[k] = 0.0;
     }
@@ -157,7 +155,6 @@ void main()
     float level = 0.0;
     float fluxScale;
     bool filtered = false;
-    ivec2 leafCell = ivec2(-1); // uFootprint 1: the leaf cell at `level` whose flux is read exactly
     if (uMode == 2) {
         int edge = max(uSize >> uLevel, 1);
         texel = ivec3(i % edge, i / edge, 0);
@@ -186,13 +183,12 @@ void main()
                     leaf = l;
                 }
                 level = float(leaf);
-                leafCell = ivec2(s.x, s.y) >> leaf;
+                ivec2 importanceCell = ivec2(s.x, s.y) >> leaf;
                 // The leaf's probability and flux are the cell's box means times 4^leaf: the
                 // factors cancel in Phi_cell / (N P_cell).
-                float probability = texelFetch(uImportanceMips, leafCell, leaf).r * toProbability;
+                float probability = texelFetch(uImportanceMips, importanceCell, leaf).r * toProbability;
                 if (probability > 0.0) fluxScale = 1.0 / (float(uCount) * probability);
-                leafCell = ivec2(texel.xy) >> leaf; // the same cell in the RSM layer
-                gLeafCell = leafCell;
+                gLeafCell = ivec2(texel.xy) >> leaf; // the same cell in the RSM layer
             }
         }
     }
@@ -200,7 +196,7 @@ void main()
     if (uLeafReads == 2 && gLeafCell.x >= 0) surfaceBlend(uvLayer.xy, int(level), texel.z);
     vec4 position = fetch(kRSMPosition, uvLayer, level, filtered, texel);
     vec4 normal = fetch(kRSMNormal, uvLayer, level, filtered, texel);
-    vec4 flux = leafCell.x >= 0 ? texelFetch(uSource[kRSMFlux], ivec3(leafCell, texel.z), int(level))
+    vec4 flux = gLeafCell.x >= 0 ? texelFetch(uSource[kRSMFlux], ivec3(gLeafCell, texel.z), int(level))
                                 : fetch(kRSMFlux, uvLayer, level, filtered, texel);
     if (!(normal.w > 0.0) || !(flux.r + flux.g + flux.b > 0.0) || dot(normal.xyz, normal.xyz) == 0.0) {
         lights[i] = light;

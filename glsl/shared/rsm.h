@@ -39,6 +39,14 @@ VPLGI_FUNC vec3 rsmDirectionToLight(RSMLayerLight layer, vec3 x)
     return normalize(vec3(layer.positionKind) - x);
 }
 
+// Two RSM samples on different surfaces (vsgl.leafEdges, ours; passes/vsgl_generate.comp): unit
+// normals na, nb more than 30 degrees apart (a corner: floor and wall), or b off a's plane by more
+// than half their distance, d = x_b - x_a (a step: a wall's top and the floor below it).
+VPLGI_FUNC bool rsmSurfacesDiffer(vec3 na, vec3 nb, vec3 d)
+{
+    return dot(na, nb) < 0.8660254f || abs(dot(d, na)) > 0.5f * length(d);
+}
+
 VPLGI_SHARED_END
 
 #ifdef __cplusplus

@@ -471,12 +471,14 @@ TEST_CASE("VSGL leaf edges: no leaf holds a step or a crease, the leaves still p
     const std::vector<Attachments> importanceMips = cpuMips(importance, size);
 
     // The CPU twin of leafHasEdge: every pair of neighbouring texels inside the cell, on different
-    // surfaces by normal (over 30 degrees) or plane (off by over half their distance).
+    // surfaces by normal (over 30 degrees) or plane (off by over half their distance). The rule itself
+    // is the shared rsmSurfacesDiffer (C++ and GLSL from one definition); the twin checks the scan,
+    // the monotone leaf choice and the geometry fed to it, and the surfaces' answers are clear-cut
+    // here (dot 1 or 0, plane offsets 0 or the whole distance).
     auto edgeBetween = [&](int ax, int ay, int bx, int by) {
         const std::size_t a = static_cast<std::size_t>(ay * size + ax), b = static_cast<std::size_t>(by * size + bx);
         const glm::vec3 d = glm::vec3(level0[shared::kRSMPosition][b]) - glm::vec3(level0[shared::kRSMPosition][a]);
-        return glm::dot(geometricNormal[a], geometricNormal[b]) < 0.8660254f ||
-               std::abs(glm::dot(d, geometricNormal[a])) > 0.5f * glm::length(d);
+        return shared::rsmSurfacesDiffer(geometricNormal[a], geometricNormal[b], d); // shared/rsm.h, as the shader
     };
     auto cellHasEdge = [&](int cx, int cy, int l) {
         const int side = 1 << l;
