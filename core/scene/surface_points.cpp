@@ -1,12 +1,18 @@
 #include "surface_points.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "core/scene/surface.h"
 #include "core/util/error.h"
 #include "core/util/random.h"
+#include "glsl/shared/ism.h"
 
 namespace vplgi {
 
@@ -116,6 +122,108 @@ SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t s
     // The kept area: the acceptance rate of the draws estimates the fraction the masks keep.
     if (draws > static_cast<std::uint64_t>(count)) points.totalArea *= static_cast<double>(count) / static_cast<double>(draws);
     return points;
+}
+
+std::vector<std::uint32_t> surfaceReach(const SurfacePoints& points, float radius)
+{
+    const std::size_t n = points.positions.size();
+    std::vector<std::uint32_t> reach(n, shared::kISMReachFull);
+    if (n == 0 || !(radius > 0.0f) || !(points.totalArea > 0.0)) return reach;
+    const float spacing = static_cast<float>(std::sqrt(points.totalArea / static_cast<double>(n)));
+    const float tolerance = std::max(0.25f * radius, 1.5f * spacing);
+    if (tolerance >= radius) return reach; // the probes could not tell an edge from a gap between points
+
+    // A dense grid of cells at least `tolerance` wide (wider when the bounds would need more than 2^22
+    // cells), its points sorted by cell: the 3^3 cells around a spot hold every point within
+    // `tolerance` of it.
+    glm::vec3 lower(std::numeric_limits<float>::max()), upper(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& p : points.positions) {
+        lower = glm::min(lower, p);
+        upper = glm::max(upper, p);
+    }
+    const glm::vec3 extent = glm::max(upper - lower, glm::vec3(1e-6f));
+    float edge = tolerance;
+    constexpr double kMaxCells = 4194304.0;
+    const double cellsAtTolerance = static_cast<double>(std::floor(extent.x / edge) + 1) *
+                                    (std::floor(extent.y / edge) + 1) * (std::floor(extent.z / edge) + 1);
+    if (cellsAtTolerance > kMaxCells) edge *= static_cast<float>(std::cbrt(cellsAtTolerance / kMaxCells)) * 1.01f;
+    const glm::ivec3 dims = glm::ivec3(glm::floor(extent / edge)) + glm::ivec3(1);
+    const auto cellOf = [&](const glm::vec3& p) {
+        return glm::clamp(glm::ivec3(glm::floor((p - lower) / edge)), glm::ivec3(0), dims - glm::ivec3(1));
+    };
+    const auto indexOf = [&](const glm::ivec3& c) {
+        return (static_cast<std::size_t>(c.z) * static_cast<std::size_t>(dims.y) + static_cast<std::size_t>(c.y)) *
+                   static_cast<std::size_t>(dims.x) +
+               static_cast<std::size_t>(c.x);
+    };
+    const std::size_t cellCount = static_cast<std::size_t>(dims.x) * dims.y * dims.z;
+    std::vector<std::uint32_t> start(cellCount + 1, 0), cellOfPoint(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        cellOfPoint[i] = static_cast<std::uint32_t>(indexOf(cellOf(points.positions[i])));
+        ++start[cellOfPoint[i] + 1];
+    }
+    for (std::size_t c = 1; c <= cellCount; ++c) start[c] += start[c - 1];
+    std::vector<std::uint32_t> sorted(n), next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) sorted[next[cellOfPoint[i]]++] = static_cast<std::uint32_t>(i);
+    // Positions and normals in cell order, side by side: the probes read them cell by cell.
+    struct Sorted {
+        glm::vec3 position, normal;
+    };
+    std::vector<Sorted> cellOrder(n);
+    for (std::size_t k = 0; k < n; ++k) cellOrder[k] = {points.positions[sorted[k]], points.normals[sorted[k]]};
+
+    const float tolerance2 = tolerance * tolerance;
+    // The 27 cells around a spot's, its own first (where a spot on the surface mostly finds a point).
+    std::array<glm::ivec3, 27> offsets;
+    for (int k = 0; k < 27; ++k) offsets[static_cast<std::size_t>(k)] = glm::ivec3(k % 3, (k / 3) % 3, k / 9) - glm::ivec3(1);
+    std::stable_sort(offsets.begin(), offsets.end(), [](const glm::ivec3& a, const glm::ivec3& b) {
+        return glm::dot(glm::vec3(a), glm::vec3(a)) < glm::dot(glm::vec3(b), glm::vec3(b));
+    });
+    // Whether some point within the tolerance of `spot` has a normal within 45 degrees of `normal`
+    // (either orientation).
+    const auto surfaceAt = [&](const glm::vec3& spot, const glm::vec3& normal) {
+        const glm::vec3 inCell = (spot - lower) / edge;
+        const glm::ivec3 centre = glm::ivec3(glm::floor(inCell));
+        const glm::vec3 fraction = inCell - glm::vec3(centre);
+        for (const glm::ivec3& offset : offsets) {
+            const glm::ivec3 c = centre + offset;
+            if (glm::any(glm::lessThan(c, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(c, dims))) continue;
+            // The cell's nearest point to the spot, in cells: skip cells wholly beyond the tolerance.
+            const glm::vec3 gap = glm::max(glm::vec3(0.0f), glm::max(glm::vec3(offset) - fraction,
+                                                                      fraction - glm::vec3(offset) - glm::vec3(1.0f)));
+            if (glm::dot(gap, gap) * edge * edge > tolerance2) continue;
+            const std::size_t cell = indexOf(c);
+            for (std::uint32_t k = start[cell]; k < start[cell + 1]; ++k) {
+                const glm::vec3 d = cellOrder[k].position - spot;
+                if (glm::dot(d, d) <= tolerance2 && std::abs(glm::dot(cellOrder[k].normal, normal)) >= 0.70710678f)
+                    return true;
+            }
+        }
+        return false;
+    };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+        // In cell order: neighbouring points probe neighbouring cells.
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+            const std::size_t i = sorted[k];
+            const glm::vec3 p = cellOrder[k].position, nrm = cellOrder[k].normal;
+            const glm::mat3 basis = shared::lightViewBasis(nrm);
+            std::uint32_t profile = 0;
+            for (int sector = 0; sector < shared::kISMReachSectors; ++sector) {
+                const double angle = 2.0 * 3.14159265358979 * sector / shared::kISMReachSectors;
+                const glm::vec3 u = static_cast<float>(std::cos(angle)) * basis[0] +
+                                    static_cast<float>(std::sin(angle)) * basis[1];
+                // The whole radius first: where the surface goes on there (most sectors), the steps
+                // between are not probed.
+                int j = surfaceAt(p + radius * u, nrm) ? shared::kISMReachSteps : 0;
+                while (j < shared::kISMReachSteps &&
+                       surfaceAt(p + (static_cast<float>(j + 1) / shared::kISMReachSteps) * radius * u, nrm))
+                    ++j;
+                profile |= static_cast<std::uint32_t>(j) << (3 * sector);
+            }
+            reach[i] = profile;
+        }
+    });
+    return reach;
 }
 
 } // namespace vplgi

@@ -32,4 +32,19 @@ struct SurfacePoints {
 // area once (a run that starts inside a block ends at the same place of the next).
 SurfacePoints sampleSurfacePoints(const Scene& scene, int count, std::uint64_t seed, int blockSize = 0);
 
+// How far each point's disk of radius `radius` in its tangent plane stays on the surface the points
+// sample (ours, the imperfect shadow maps' reach: glsl/shared/ism.h, ismWithinReach), packed per
+// point as that function reads it: for each of the 8 sectors around the point, 4 when the spot at
+// the whole radius along the sector's central direction finds the surface, else the largest j < 4
+// such that every spot at i radius / 4, i = 1 .. j, does; a spot finds the surface when some point
+// of the set lies within `tolerance` of it with a normal within 45 degrees of the point's own
+// (either orientation). (The spot at the whole radius first: most sectors end there, 8 probes per
+// point instead of 32.) A wall's points reach the whole radius inside it and stop at
+// its edges; a column's stop where it curves away. tolerance = max(radius / 4, 1.5 x the set's
+// spacing sqrt(totalArea / n)), so that a spot on a flat surface expects at least pi 1.5^2 = 7
+// points within it and misses with probability about e^-7 = 0.1%; with a tolerance as large as the
+// radius (a sparse set) every point gets the whole disk. The imperfect shadow maps' defaults (64 set
+// points per run point) give a tolerance of about radius / 4. Deterministic; runs in parallel (TBB).
+std::vector<std::uint32_t> surfaceReach(const SurfacePoints& points, float radius);
+
 } // namespace vplgi

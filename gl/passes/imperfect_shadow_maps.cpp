@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <list>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/packing.hpp>
@@ -22,12 +25,49 @@ namespace vplgi {
 
 namespace {
 
-// A point of passes/ism_splat.comp's buffer (std430 struct of a vec3 and a uint: 16 bytes).
+// A point of passes/ism_splat.comp's buffer (std430 struct of a vec3 and two uints, aligned as the
+// vec3: 32 bytes).
 struct ISMPointRecord {
-    glm::vec3 position;          // world [m]
+    glm::vec3 position;            // world [m]
     std::uint32_t normalSnorm2x16; // octEncode'd unit geometric normal, packSnorm2x16'd
+    std::uint32_t reach;           // glsl/shared/ism.h, ismWithinReach (kISMReachFull without ISMParams::reach)
+    std::uint32_t padding[3];
 };
-static_assert(sizeof(ISMPointRecord) == 16, "ISMPointRecord must match std430");
+static_assert(sizeof(ISMPointRecord) == 32, "ISMPointRecord must match std430");
+
+// surfaceReach of a point set, remembered for the last few sets in the process (ours): it takes
+// about half a second for the default 524,288 points on 2 cores, and one process often makes maps
+// of the same scene again (conform's seeds, a test's techniques, several ISM techniques at once).
+// The key hashes every byte of the points, the normals, the area and the radius (FNV-1a, 64 bits),
+// so a hit is the same input; the result is a pure function of it.
+std::vector<std::uint32_t> cachedSurfaceReach(const SurfacePoints& points, float radius)
+{
+    std::uint64_t hash = 1469598103934665603ull;
+    const auto mix = [&hash](const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+    };
+    mix(points.positions.data(), points.positions.size() * sizeof(glm::vec3));
+    mix(points.normals.data(), points.normals.size() * sizeof(glm::vec3));
+    mix(&points.totalArea, sizeof(points.totalArea));
+    mix(&radius, sizeof(radius));
+    const std::size_t count = points.positions.size();
+    static std::mutex mutex;
+    static std::list<std::pair<std::uint64_t, std::vector<std::uint32_t>>> recent; // most recent first
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        for (auto it = recent.begin(); it != recent.end(); ++it)
+            if (it->first == hash && it->second.size() == count) {
+                recent.splice(recent.begin(), recent, it);
+                return recent.front().second;
+            }
+    }
+    std::vector<std::uint32_t> reach = surfaceReach(points, radius);
+    const std::lock_guard<std::mutex> lock(mutex);
+    recent.emplace_front(hash, reach);
+    if (recent.size() > 4) recent.pop_back();
+    return reach;
+}
 
 // Points one splat invocation handles (passes/ism_splat.comp ISM_POINTS_PER_INVOCATION).
 constexpr int kSplatPointsPerInvocation = 8;
@@ -83,6 +123,10 @@ void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
             "near field: every point of the scene's set within this x sqrt(area / points per map) of a light is "
             "splatted into its map too, with the full set's smaller disks, so that the surfaces right around a light "
             "(a wall beside it, a corner) have no gaps; 0 = none (ours)");
+    v.field(prefix + "Reach", reach,
+            "with planes: each point's disk stops where its surface does (per sector of its tangent plane, found "
+            "once from the point set), so a disk at a surface's edge writes no plane where there is no surface "
+            "(ours)");
     v.field(prefix + "Seed", seed, "random stream of the surface points");
 }
 
@@ -146,12 +190,6 @@ void ImperfectShadowMaps::reloadShaders(const gl::ShaderLoader& shaders)
 void ImperfectShadowMaps::setScene(const Scene& scene)
 {
     const SurfacePoints sample = sampleSurfacePoints(scene, mParams.points, mParams.seed, mParams.stratified ? mParams.pointsPerMap : 0);
-    std::vector<ISMPointRecord> packed(sample.positions.size());
-    for (std::size_t i = 0; i < packed.size(); ++i)
-        packed[i] = ISMPointRecord{sample.positions[i], glm::packSnorm2x16(shared::octEncode(sample.normals[i]))};
-    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(ISMPointRecord)),
-                         packed.data(), false);
-    mPointCount = static_cast<int>(packed.size());
     // n points sampled uniformly over the area A: one per A / n square metres, whose disk has radius
     // sqrt(A / (pi n)); the splats are splatScale times that.
     const auto diskRadius = [&](int n) {
@@ -159,6 +197,16 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     };
     // Each light's run of pointsPerMap points is a uniform sample of the area.
     mSplatRadius = diskRadius(mParams.pointsPerMap);
+    const bool reach = mParams.reach && mParams.planes && mSplatRadius > 0.0f;
+    const std::vector<std::uint32_t> reaches =
+        reach ? cachedSurfaceReach(sample, mSplatRadius) : std::vector<std::uint32_t>(sample.positions.size(), shared::kISMReachFull);
+    std::vector<ISMPointRecord> packed(sample.positions.size());
+    for (std::size_t i = 0; i < packed.size(); ++i)
+        packed[i] = ISMPointRecord{sample.positions[i], glm::packSnorm2x16(shared::octEncode(sample.normals[i])),
+                                   reaches[i], {0, 0, 0}};
+    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(ISMPointRecord)),
+                         packed.data(), false);
+    mPointCount = static_cast<int>(packed.size());
     // As LightSkin's lightCacheVisibilityLift: an absolute margin far below any wall's thickness.
     mLift = 1e-4f * glm::length(scene.worldBounds().extent());
     mNearSlotCount = 0;
@@ -223,6 +271,7 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uRadius2Vec4", radius2Vec4);
     splat.set("uOwnRadius", mParams.ownRadius);
     splat.set("uPlanes", mParams.planes ? 1 : 0);
+    splat.set("uReach", mParams.planes && mParams.reach ? 1 : 0);
     splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);
     splat.set("uPass", 0);
     const int runInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;

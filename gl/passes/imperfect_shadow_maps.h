@@ -106,6 +106,12 @@
 //  per light each take one of the 3^3 cells around it. Sealed room at nearField 1.5: 0.0001 lit though
 //  occluded, 0.0003 disagreeing (0.0042, 0.0044 without); Cornell 5.4% either way (tests/gl/test_imperfect_shadow_maps.cpp,
 //  whose CPU twin finds the near points by brute force). Images: docs/vsgl.md, "The near field".
+//  Reach (`reach`, with planes, ours): a disk centred near the edge of its surface overhangs it, and
+//  with planes the overhang is a plane where no surface is, which hides every receiver behind it (on
+//  Sponza's columns and arches 29% of the pairs Embree sees lit). setScene finds, once, how far each
+//  point's surface continues in 8 sectors of its tangent plane (core/scene/surface_points.h,
+//  surfaceReach, from the point set itself) and the splat writes no texel beyond it
+//  (glsl/shared/ism.h, ismWithinReach). Measured per pair and per image in docs/vsgl.md, "Reach".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB
@@ -151,11 +157,13 @@ struct ISMParams {
     float edgeMargin = 0.1f;         // planes: margin beside a parallel step, relative to the distance (ours)
     int gapReach = 4;                // planes: gap filling from opposite neighbours up to this many texels away; 0 = none (ours)
     float nearField = 1.5f;          // every point of P within this x sqrt(A / pointsPerMap) of a light is splatted too; 0 = none (ours)
+    bool reach = false;              // planes: a disk stops where its point's surface does (surfaceReach) (ours; off: docs/vsgl.md "Reach")
     std::uint32_t seed = 1;          // the point set's random stream
 
     // Keys prefix + "Points", "PointsPerMap", "MapSize", "PullPushLevels", "PullPushDepthRange",
     // "DepthBias", "NormalOffset", "SplatScale", "SplatMaxExtent", "Stratified", "OwnRadius",
-    // "Planes", "Seed" (prefix "vsgl.ism" gives "vsgl.ismPoints").
+    // "Planes", "EdgeMargin", "GapReach", "NearField", "Reach", "Seed" (prefix "vsgl.ism" gives
+    // "vsgl.ismPoints").
     void visitParams(ParamVisitor& visitor, const std::string& prefix);
 };
 
@@ -186,7 +194,7 @@ public:
     // With params.planes: r32ui 2D array in the maps' layout, level 0 only: the packed normal of each
     // texel's winning point (glsl/shared/ism.h, ismPackNormal), kISMNoNormal where none won it.
     const gl::Texture& normals() const { return mNormals; }
-    const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal
+    const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal, uint reach (32 bytes)
     float splatRadius() const { return mSplatRadius; }   // after setScene
     // The near field's radius and its points' disk radius [m] (after setScene; 0 without a near field).
     float nearRadius() const { return mNearSlotCount > 0 ? mNearRadius : 0.0f; }

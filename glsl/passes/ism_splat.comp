@@ -22,8 +22,9 @@ layout(binding = kImageISMMaps, r32ui) uniform uimage2DArray uMaps;
 layout(binding = kImageISMNormals, r32ui) uniform uimage2DArray uNormals; // uPass 1: the winners' packed normals
 
 struct ISMPoint {
-    vec3 position;       // world [m]
+    vec3 position;        // world [m]
     uint normalSnorm2x16; // unit geometric normal, octEncode'd and packSnorm2x16'd
+    uint reach;           // glsl/shared/ism.h, ismWithinReach (std430: the struct takes 32 bytes)
 };
 
 layout(std430, binding = kBindingISMPoints) readonly buffer Points {
@@ -48,6 +49,7 @@ uniform float uOwnRadius;      // points within this x the light's radius are no
 uniform int uOwnSurfaceOnly;   // 1: of the points within the own radius, only those of the light's own surface are left out
 uniform int uPlanes;           // 1: the centre texel holds the distance to the point's plane (glsl/shared/ism.h, planes)
 uniform int uPass;             // 0: distances (nearest wins); 1: normals where the point's distance won the texel
+uniform int uReach;            // 1 (with uPlanes): a disk's texel beyond the point's reach is not written (ismWithinReach)
 
 // Pass 0: the nearest distance wins. Pass 1 (planes): where this point's distance is the texel's,
 // its packed normal, the smallest winning.
@@ -93,6 +95,10 @@ void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, floa
                                         : pointDistance;
     if (ismValid(centreDistance)) splatTexel(texel, centreDistance, packedNormal);
     if (!(radius > 0.0)) return;
+    // The reach: only a point whose disk is cut somewhere tests its texels (glsl/shared/ism.h).
+    bool cut = uPlanes != 0 && uReach != 0 && record.reach != kISMReachFull;
+    vec3 reachAxis0 = vec3(0.0), reachAxis1 = vec3(0.0);
+    if (cut) ismReachAxes(worldNormal, frame, reachAxis0, reachAxis1);
     vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
     mat2 ellipse = ismSplatEllipse(toPoint, normal, radius, uMapSize);
     vec2 extent = ismSplatExtent(ellipse, uSplatMaxExtent);
@@ -100,8 +106,14 @@ void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, floa
     for (int y = lo.y; y <= hi.y; ++y)
         for (int x = lo.x; x <= hi.x; ++x) {
             float distance = ismSplatDistance(toPoint, toPointLength, normal, radius, centre, ellipse, ivec2(x, y), uMapSize);
-            if (uPlanes != 0 && ismValid(distance))
+            if (uPlanes != 0 && ismValid(distance)) {
                 distance = ismPlaneSplatDistance(toPoint, normal, radius, ivec2(x, y), uMapSize);
+                // The meeting point's offset from the point (light frame) against the reach.
+                if (cut && ismValid(distance) &&
+                    !ismWithinReach(record.reach, distance * vplParaboloidTexelDirection(ivec2(x, y), uMapSize) - toPoint,
+                                    reachAxis0, reachAxis1, uSplatRadius))
+                    distance = kVPLNoOccluder;
+            }
             if (ismValid(distance)) splatTexel(ivec3(tileOrigin + ivec2(x, y), texel.z), distance, packedNormal);
         }
 }

@@ -210,6 +210,55 @@ VPLGI_FUNC float ismPlaneSplatDistance(vec3 toPoint, vec3 normal, float reach, i
     return t;
 }
 
+// Reach (ours, `<technique>.ismReach`, with planes): a disk centred near its surface's edge overhangs
+// it, and what the overhang writes is a plane where there is no surface: on a scene of columns,
+// arches and balustrades (Sponza) 19% of the map texels lay more than 10% nearer than the first
+// surface along their central direction, and the plane rule shadowed 29% of the light-receiver pairs
+// Embree sees lit. Each point carries its reach: per sector k of kISMReachSectors in its tangent
+// plane (lightViewBasis(normal) columns 0 and 1, sector k centred on the angle k 2 pi / 8 from column
+// 0), the fraction j / 4 (j = 0 .. 4, 3 bits each) of the disk radius up to which the surface
+// continues (core/scene/surface_points.h, surfaceReach). A disk's texel whose central ray meets the
+// point's plane farther from the point than that (in the sector of the meeting point) is not
+// written; the point's own texel always is.
+VPLGI_CONST int kISMReachSectors = 8;
+VPLGI_CONST int kISMReachSteps = 4;          // reach j / kISMReachSteps of the radius, j = 0 .. 4
+VPLGI_CONST uint kISMReachFull = 0x924924u;  // every sector's j = 4: the whole disk
+
+// The sector (0 .. 7) of an offset with coordinates (a, b) along the tangent axes lightViewBasis(normal)
+// columns 0 and 1.
+VPLGI_FUNC int ismReachSector(float a, float b)
+{
+    // Turned by 22.5 degrees, so that sector k (the octant of (x, y)) is centred on k x 45 degrees.
+    float x = 0.92387953f * a - 0.38268343f * b, y = 0.38268343f * a + 0.92387953f * b;
+    if (y >= 0.0f) return x >= 0.0f ? (x >= y ? 0 : 1) : (-x <= y ? 2 : 3);
+    return x < 0.0f ? (-x >= -y ? 4 : 5) : (x <= -y ? 6 : 7);
+}
+
+// The reach of sector `sector` of a point's profile, as a fraction of its disk radius.
+VPLGI_FUNC float ismReachFraction(uint profile, int sector)
+{
+    return float((profile >> uint(3 * sector)) & 7u) / float(kISMReachSteps);
+}
+
+// The tangent axes of a point's profile (lightViewBasis(worldNormal) columns 0 and 1) in the frame
+// `frame` of a light's map, computed once per point by the splat.
+VPLGI_FUNC void ismReachAxes(vec3 worldNormal, mat3 frame, VPLGI_OUT(vec3) axis0, VPLGI_OUT(vec3) axis1)
+{
+    mat3 basis = lightViewBasis(worldNormal);
+    axis0 = transpose(frame) * basis[0];
+    axis1 = transpose(frame) * basis[1];
+}
+
+// Whether a disk's texel whose central ray meets the point's plane at `offset` from the point (in the
+// frame of the axes, ismReachAxes) lies within the point's reach (radius: the profile's unit, the
+// light run's disk radius).
+VPLGI_FUNC bool ismWithinReach(uint profile, vec3 offset, vec3 axis0, vec3 axis1, float radius)
+{
+    if (profile == kISMReachFull) return true;
+    int sector = ismReachSector(dot(offset, axis0), dot(offset, axis1));
+    return length(offset) <= radius * ismReachFraction(profile, sector);
+}
+
 // Near field (ours, `<technique>.ismNearField`): the grid cell of world point `p`, cells of edge
 // 1 / `inverseEdge` from `origin`. The CPU's sort by cell and the splat's lookup must agree bit for
 // bit, so both call this one function, and it multiplies: GLSL rounds a subtraction and a product
