@@ -148,8 +148,10 @@ std::vector<std::uint32_t> surfaceReach(const SurfacePoints& points, float radiu
                                     (std::floor(extent.y / edge) + 1) * (std::floor(extent.z / edge) + 1);
     if (cellsAtTolerance > kMaxCells) edge *= static_cast<float>(std::cbrt(cellsAtTolerance / kMaxCells)) * 1.01f;
     const glm::ivec3 dims = glm::ivec3(glm::floor(extent / edge)) + glm::ivec3(1);
+    // A spot's position in cell units (its cell: the floor); the points' cells clamped into the grid.
+    const auto inCells = [&](const glm::vec3& p) { return (p - lower) / edge; };
     const auto cellOf = [&](const glm::vec3& p) {
-        return glm::clamp(glm::ivec3(glm::floor((p - lower) / edge)), glm::ivec3(0), dims - glm::ivec3(1));
+        return glm::clamp(glm::ivec3(glm::floor(inCells(p))), glm::ivec3(0), dims - glm::ivec3(1));
     };
     const auto indexOf = [&](const glm::ivec3& c) {
         return (static_cast<std::size_t>(c.z) * static_cast<std::size_t>(dims.y) + static_cast<std::size_t>(c.y)) *
@@ -182,7 +184,7 @@ std::vector<std::uint32_t> surfaceReach(const SurfacePoints& points, float radiu
     // Whether some point within the tolerance of `spot` has a normal within 45 degrees of `normal`
     // (either orientation).
     const auto surfaceAt = [&](const glm::vec3& spot, const glm::vec3& normal) {
-        const glm::vec3 inCell = (spot - lower) / edge;
+        const glm::vec3 inCell = inCells(spot); // not clamped: a spot beyond the grid skips the missing cells
         const glm::ivec3 centre = glm::ivec3(glm::floor(inCell));
         const glm::vec3 fraction = inCell - glm::vec3(centre);
         for (const glm::ivec3& offset : offsets) {
@@ -206,12 +208,9 @@ std::vector<std::uint32_t> surfaceReach(const SurfacePoints& points, float radiu
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
             const std::size_t i = sorted[k];
             const glm::vec3 p = cellOrder[k].position, nrm = cellOrder[k].normal;
-            const glm::mat3 basis = shared::lightViewBasis(nrm);
             std::uint32_t profile = 0;
             for (int sector = 0; sector < shared::kISMReachSectors; ++sector) {
-                const double angle = 2.0 * 3.14159265358979 * sector / shared::kISMReachSectors;
-                const glm::vec3 u = static_cast<float>(std::cos(angle)) * basis[0] +
-                                    static_cast<float>(std::sin(angle)) * basis[1];
+                const glm::vec3 u = shared::ismReachDirection(nrm, sector);
                 // The whole radius first: where the surface goes on there (most sectors), the steps
                 // between are not probed.
                 int j = surfaceAt(p + radius * u, nrm) ? shared::kISMReachSteps : 0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <list>
 #include <mutex>
 #include <optional>
@@ -25,15 +26,13 @@ namespace vplgi {
 
 namespace {
 
-// A point of passes/ism_splat.comp's buffer (std430 struct of a vec3 and two uints, aligned as the
-// vec3: 32 bytes).
+// A point of passes/ism_splat.comp's buffer: one uvec4 (the position's bits, the packed normal), and
+// with the reach a second (the reach profile, 0, 0, 0).
 struct ISMPointRecord {
     glm::vec3 position;            // world [m]
     std::uint32_t normalSnorm2x16; // octEncode'd unit geometric normal, packSnorm2x16'd
-    std::uint32_t reach;           // glsl/shared/ism.h, ismWithinReach (kISMReachFull without ISMParams::reach)
-    std::uint32_t padding[3];
 };
-static_assert(sizeof(ISMPointRecord) == 32, "ISMPointRecord must match std430");
+static_assert(sizeof(ISMPointRecord) == 16, "ISMPointRecord must match a std430 uvec4");
 
 // surfaceReach of a point set, remembered for the last few sets in the process (ours): it takes
 // about half a second for the default 524,288 points on 2 cores, and one process often makes maps
@@ -198,15 +197,18 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     // Each light's run of pointsPerMap points is a uniform sample of the area.
     mSplatRadius = diskRadius(mParams.pointsPerMap);
     const bool reach = mParams.reach && mParams.planes && mSplatRadius > 0.0f;
-    const std::vector<std::uint32_t> reaches =
-        reach ? cachedSurfaceReach(sample, mSplatRadius) : std::vector<std::uint32_t>(sample.positions.size(), shared::kISMReachFull);
-    std::vector<ISMPointRecord> packed(sample.positions.size());
-    for (std::size_t i = 0; i < packed.size(); ++i)
-        packed[i] = ISMPointRecord{sample.positions[i], glm::packSnorm2x16(shared::octEncode(sample.normals[i])),
-                                   reaches[i], {0, 0, 0}};
-    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(ISMPointRecord)),
+    // Without the reach (the default) 16 bytes a point; with it, its profile in a second uvec4.
+    mPointStride = reach ? 2 : 1;
+    const std::vector<std::uint32_t> reaches = reach ? cachedSurfaceReach(sample, mSplatRadius) : std::vector<std::uint32_t>();
+    std::vector<glm::uvec4> packed(sample.positions.size() * static_cast<std::size_t>(mPointStride), glm::uvec4(0u));
+    for (std::size_t i = 0; i < sample.positions.size(); ++i) {
+        const ISMPointRecord record{sample.positions[i], glm::packSnorm2x16(shared::octEncode(sample.normals[i]))};
+        std::memcpy(&packed[i * static_cast<std::size_t>(mPointStride)], &record, sizeof(record));
+        if (reach) packed[i * 2 + 1].x = reaches[i];
+    }
+    mPoints = gl::Buffer("ISM surface points", static_cast<GLsizeiptr>(packed.size() * sizeof(glm::uvec4)),
                          packed.data(), false);
-    mPointCount = static_cast<int>(packed.size());
+    mPointCount = static_cast<int>(sample.positions.size());
     // As LightSkin's lightCacheVisibilityLift: an absolute margin far below any wall's thickness.
     mLift = 1e-4f * glm::length(scene.worldBounds().extent());
     mNearSlotCount = 0;
@@ -222,15 +224,15 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
         mNearInverseEdge = 1.0f / (mNearRadius * 1.0001f);
         mNearSlotCount = 1;
         while (mNearSlotCount < 2 * mPointCount && mNearSlotCount < (1 << 24)) mNearSlotCount *= 2;
-        std::vector<std::uint32_t> slotOf(packed.size()), start(static_cast<std::size_t>(mNearSlotCount) + 1, 0);
-        for (std::size_t i = 0; i < packed.size(); ++i) {
+        std::vector<std::uint32_t> slotOf(sample.positions.size()), start(static_cast<std::size_t>(mNearSlotCount) + 1, 0);
+        for (std::size_t i = 0; i < sample.positions.size(); ++i) {
             const glm::ivec3 cell = shared::ismNearCell(sample.positions[i], mNearOrigin, mNearInverseEdge);
             slotOf[i] = shared::ismNearSlot(cell, static_cast<std::uint32_t>(mNearSlotCount));
             ++start[slotOf[i] + 1];
         }
         for (std::size_t s = 1; s < start.size(); ++s) start[s] += start[s - 1];
-        std::vector<std::uint32_t> indices(packed.size()), next(start.begin(), start.end() - 1);
-        for (std::size_t i = 0; i < packed.size(); ++i) indices[next[slotOf[i]]++] = static_cast<std::uint32_t>(i);
+        std::vector<std::uint32_t> indices(sample.positions.size()), next(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < sample.positions.size(); ++i) indices[next[slotOf[i]]++] = static_cast<std::uint32_t>(i);
         mNearIndices = gl::Buffer("ISM near-field indices", static_cast<GLsizeiptr>(indices.size() * 4), indices.data(), false);
         mNearSlots = gl::Buffer("ISM near-field slots", static_cast<GLsizeiptr>(start.size() * 4), start.data(), false);
     }
@@ -272,6 +274,7 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uOwnRadius", mParams.ownRadius);
     splat.set("uPlanes", mParams.planes ? 1 : 0);
     splat.set("uReach", mParams.planes && mParams.reach ? 1 : 0);
+    splat.set("uPointStride", mPointStride);
     splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);
     splat.set("uPass", 0);
     const int runInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;

@@ -197,7 +197,7 @@ public:
     // With params.planes: r32ui 2D array in the maps' layout, level 0 only: the packed normal of each
     // texel's winning point (glsl/shared/ism.h, ismPackNormal), kISMNoNormal where none won it.
     const gl::Texture& normals() const { return mNormals; }
-    const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal, uint reach (32 bytes)
+    const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal; with the reach a second uvec4 (its profile)
     float splatRadius() const { return mSplatRadius; }   // after setScene
     // The near field's radius and its points' disk radius [m] (after setScene; 0 without a near field).
     float nearRadius() const { return mNearSlotCount > 0 ? mNearRadius : 0.0f; }
@@ -220,6 +220,7 @@ private:
     float mLift = 0.0f;   // the plane rule's absolute margin [m]: 1e-4 x the scene's diagonal (after setScene)
     gl::Sampler mSampler;
     gl::Buffer mPoints;
+    int mPointStride = 1; // uvec4s a point in mPoints: 2 with the reach
     int mPointCount = 0;
     float mSplatRadius = 0.0f; // world radius of a point's disk [m] (splatScale sqrt(A / (pi pointsPerMap)))
     // Near field (params.nearField > 0): the points hashed by cells of edge mNearRadius (glsl/shared/ism.h,

@@ -24,12 +24,25 @@ layout(binding = kImageISMNormals, r32ui) uniform uimage2DArray uNormals; // uPa
 struct ISMPoint {
     vec3 position;        // world [m]
     uint normalSnorm2x16; // unit geometric normal, octEncode'd and packSnorm2x16'd
-    uint reach;           // glsl/shared/ism.h, ismWithinReach (std430: the struct takes 32 bytes)
+    uint reach;           // glsl/shared/ism.h, ismWithinReach (kISMReachFull without the reach)
 };
 
+// Per point uPointStride uvec4s: (the position's bits, the packed normal), then, only with the reach
+// (stride 2), (the reach profile, -, -, -): 16 bytes a point without it.
 layout(std430, binding = kBindingISMPoints) readonly buffer Points {
-    ISMPoint points[];
+    uvec4 pointWords[];
 };
+uniform int uPointStride;
+
+ISMPoint loadPoint(uint index)
+{
+    uvec4 head = pointWords[index * uint(uPointStride)];
+    ISMPoint point;
+    point.position = uintBitsToFloat(head.xyz);
+    point.normalSnorm2x16 = head.w;
+    point.reach = uPointStride > 1 ? pointWords[index * uint(uPointStride) + 1u].x : kISMReachFull;
+    return point;
+}
 
 layout(std430, binding = kBindingISMLights) readonly buffer Lights {
     vec4 lightRecords[]; // per light uStride vec4s: (position, -), (unit normal, -), ...; w of vec4 uValidVec4: valid
@@ -135,7 +148,7 @@ void main()
         ivec3 cell = ismNearCell(positionValid.xyz, uNearOrigin, uNearInverseEdge) + ivec3(c % 3, (c / 3) % 3, c / 9) - ivec3(1);
         uint slot = ismNearSlot(cell, uint(uNearSlots));
         for (uint k = nearSlots[slot]; k < nearSlots[slot + 1u]; ++k) {
-            ISMPoint record = points[nearIndices[k]];
+            ISMPoint record = loadPoint(nearIndices[k]);
             if (!(length(record.position - positionValid.xyz) < uNearRadius)) continue;
             if (ismNearCell(record.position, uNearOrigin, uNearInverseEdge) != cell) continue; // another cell of the slot
             splatPoint(record, light, positionValid.xyz, frame, ownRadius, tileOrigin, uNearSplatRadius);
@@ -148,6 +161,6 @@ void main()
     uint start = (uint(light) * uint(uPointsPerMap)) % uint(uPointCount);
     int last = min(first + ISM_POINTS_PER_INVOCATION, uPointsPerMap);
     for (int k = first; k < last; ++k)
-        splatPoint(points[(start + uint(k)) % uint(uPointCount)], light, positionValid.xyz, frame, ownRadius,
+        splatPoint(loadPoint((start + uint(k)) % uint(uPointCount)), light, positionValid.xyz, frame, ownRadius,
                    tileOrigin, uSplatRadius);
 }

@@ -32,7 +32,7 @@ VPLGI_CONST int kBindingVSGLights = 13;          // SSBO VSGLight[] (glsl/shared
 VPLGI_CONST int kBindingRSMLayers = 14;          // SSBO RSMLayerLight[] (glsl/shared/rsm.h): each RSM layer's light
 
 // Storage buffers of the imperfect shadow maps (gl/passes/imperfect_shadow_maps).
-VPLGI_CONST int kBindingISMPoints = 15;          // SSBO vec4[]: the scene's surface points (xyz)
+VPLGI_CONST int kBindingISMPoints = 15;          // SSBO uvec4[]: the scene's surface points (position, normal; reach)
 VPLGI_CONST int kBindingISMLights = 16;          // SSBO vec4[]: the lights' records (position+valid, normal, ...)
 VPLGI_CONST int kBindingISMNearIndices = 30;     // SSBO uint[]: the points' indices, hash slot by hash slot (near field)
 VPLGI_CONST int kBindingISMNearSlots = 31;       // SSBO uint[T + 1]: each hash slot's first index (near field)

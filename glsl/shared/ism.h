@@ -234,6 +234,15 @@ VPLGI_FUNC int ismReachSector(float a, float b)
     return x < 0.0f ? (-x >= -y ? 4 : 5) : (x <= -y ? 6 : 7);
 }
 
+// Sector `sector`'s central direction in the tangent plane of `normal` (lightViewBasis(normal) columns
+// 0 and 1, the angle sector x 2 pi / kISMReachSectors from column 0): where surfaceReach probes.
+VPLGI_FUNC vec3 ismReachDirection(vec3 normal, int sector)
+{
+    mat3 basis = lightViewBasis(normal);
+    float angle = 6.28318531f * float(sector) / float(kISMReachSectors);
+    return cos(angle) * basis[0] + sin(angle) * basis[1];
+}
+
 // The reach of sector `sector` of a point's profile, as a fraction of its disk radius.
 VPLGI_FUNC float ismReachFraction(uint profile, int sector)
 {

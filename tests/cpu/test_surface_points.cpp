@@ -156,14 +156,6 @@ int reachSteps(const std::vector<std::uint32_t>& reach, std::size_t i, int secto
     return static_cast<int>((reach[i] >> (3 * sector)) & 7u);
 }
 
-// Sector k's central direction in the tangent plane of n (as surfaceReach and ismReachSector).
-glm::vec3 sectorDirection(const glm::vec3& n, int sector)
-{
-    const glm::mat3 basis = shared::lightViewBasis(n);
-    const double angle = 2.0 * 3.14159265358979 * sector / shared::kISMReachSectors;
-    return static_cast<float>(std::cos(angle)) * basis[0] + static_cast<float>(std::sin(angle)) * basis[1];
-}
-
 } // namespace
 
 TEST_CASE("surface points: a disk's reach stops where its surface does (plate, column) and the grid finds what "
@@ -191,7 +183,7 @@ TEST_CASE("surface points: a disk's reach stops where its surface does (plate, c
         int beyond = 0, short_ = 0, full = 0;
         for (std::size_t i = 0; i < points.positions.size(); ++i)
             for (int k = 0; k < shared::kISMReachSectors; ++k) {
-                const glm::vec3 u = sectorDirection(points.normals[i], k), p = points.positions[i];
+                const glm::vec3 u = shared::ismReachDirection(points.normals[i], k), p = points.positions[i];
                 // Distance along u to the square's edge.
                 float edge = 1e30f;
                 for (int axis = 0; axis < 2; ++axis) {
@@ -232,7 +224,7 @@ TEST_CASE("surface points: a disk's reach stops where its surface does (plate, c
         for (std::size_t i = 0; i < points.positions.size(); ++i) {
             if (points.positions[i].y < 1.0f || points.positions[i].y > height - 1.0f) continue;
             for (int k = 0; k < shared::kISMReachSectors; ++k) {
-                const float axial = std::abs(sectorDirection(points.normals[i], k).y);
+                const float axial = std::abs(shared::ismReachDirection(points.normals[i], k).y);
                 const int j = reachSteps(reach, i, k);
                 if (axial < 0.1f) {
                     ++around;
@@ -279,7 +271,7 @@ TEST_CASE("surface points: a disk's reach stops where its surface does (plate, c
         for (std::size_t i = 0; i < points.positions.size(); ++i) {
             std::uint32_t profile = 0;
             for (int k = 0; k < shared::kISMReachSectors; ++k) {
-                const glm::vec3 u = sectorDirection(points.normals[i], k);
+                const glm::vec3 u = shared::ismReachDirection(points.normals[i], k);
                 const auto found = [&](int step) {
                     const glm::vec3 spot =
                         points.positions[i] + (static_cast<float>(step) / shared::kISMReachSteps) * radius * u;

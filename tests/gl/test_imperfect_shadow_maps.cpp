@@ -1076,21 +1076,15 @@ TEST_CASE("ISM: agreement with Embree on the glossy room and the canyon (prints)
 // techniques' virtual lights lie). Hidden: `./build/tests/vplgi_tests_gl "[.ism-agreement-sponza]"`.
 TEST_CASE("ISM: agreement with Embree on the shared Sponza (prints)", "[.ism-agreement-sponza]")
 {
-    const std::optional<std::filesystem::path> file = test::findSharedAsset("scenes/dabrovic-sponza/dabrovic-sponza.glb");
-    if (!file) return;
+    if (!test::findSharedAsset("scenes/dabrovic-sponza/dabrovic-sponza.glb")) return;
     test::ensureGLContext();
-    Scene scene = loadGltf(file->string());
-    scene.cameras.clear();
-    Camera camera;
-    camera.position = {14.4499f, 6.89415f, -1.18547f};
-    camera.target = {13.4563f, 6.78438f, -1.15861f};
-    camera.up = {-0.1097f, 0.99396f, 0.00374f};
-    camera.fovY = glm::radians(74.1f);
-    camera.zNear = 0.05f;
-    camera.zFar = 100.0f;
-    scene.cameras.push_back(camera);
+    // The scene file's camera and point lamp, as `vplgi conform --scenes scenes/shared/sponza.json`.
+    const Scene scene =
+        loadSceneFile((std::filesystem::path(VPLGI_SOURCE_DIR) / "scenes" / "shared" / "sponza.json").string()).scene;
+    REQUIRE(scene.lights.size() == 1u);
+    REQUIRE(!scene.cameras.empty());
     const RayScene rays(scene);
-    const glm::vec3 lamp(0.0f, 17.0f, 0.0f);
+    const glm::vec3 lamp = scene.lights[0].position;
     const SurfacePoints points = sampleSurfacePoints(scene, 4096, 11);
     std::vector<LightRecord> lights;
     for (std::size_t i = 0; i < points.positions.size() && lights.size() < 64; ++i) {
