@@ -126,6 +126,10 @@ void ISMParams::visitParams(ParamVisitor& v, const std::string& prefix)
             "with planes: each point's disk stops where its surface does (per sector of its tangent plane, found "
             "once from the point set), so a disk at a surface's edge writes no plane where there is no surface "
             "(ours)");
+    v.field(prefix + "ReachMargin", reachMargin, 0.0f, 8.0f,
+            "with the reach: a disk runs this many spacings of the scene's point set (sqrt(area / points)) past "
+            "its sector's reach, where an edge can lie unseen by the probes; without it strips along edges that no "
+            "disk of a map's run covers let light through walls (ours)");
     v.field(prefix + "Seed", seed, "random stream of the surface points");
 }
 
@@ -199,6 +203,8 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     const bool reach = mParams.reach && mParams.planes && mSplatRadius > 0.0f;
     // Without the reach (the default) 16 bytes a point; with it, its profile in a second uvec4.
     mPointStride = reach ? 2 : 1;
+    mReachMargin = reach ? mParams.reachMargin * static_cast<float>(std::sqrt(sample.totalArea / static_cast<double>(sample.positions.size())))
+                         : 0.0f;
     const std::vector<std::uint32_t> reaches = reach ? cachedSurfaceReach(sample, mSplatRadius) : std::vector<std::uint32_t>();
     std::vector<glm::uvec4> packed(sample.positions.size() * static_cast<std::size_t>(mPointStride), glm::uvec4(0u));
     for (std::size_t i = 0; i < sample.positions.size(); ++i) {
@@ -275,6 +281,7 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uPlanes", mParams.planes ? 1 : 0);
     splat.set("uReach", mParams.planes && mParams.reach ? 1 : 0);
     splat.set("uPointStride", mPointStride);
+    splat.set("uReachMargin", mReachMargin);
     splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);
     splat.set("uPass", 0);
     const int runInvocations = (mParams.pointsPerMap + kSplatPointsPerInvocation - 1) / kSplatPointsPerInvocation;

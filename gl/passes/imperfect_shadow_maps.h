@@ -111,10 +111,11 @@
 //  Sponza's columns and arches 29% of the pairs Embree sees lit). setScene finds, once, how far each
 //  point's surface continues in 8 sectors of its tangent plane (core/scene/surface_points.h,
 //  surfaceReach, from the point set itself) and the splat writes no texel beyond it
-//  (glsl/shared/ism.h, ismWithinReach); a hit cache keeps the last four point sets' reach. Sponza -36%
-//  -> -25%, canyon -14% -> -11%, but the sealed rooms' closed sides leak twice as much (thin faces'
-//  overhangs had covered gaps), so it is off by default. Measured per pair and per image in
-//  docs/vsgl.md, "Reach".
+//  (glsl/shared/ism.h, ismWithinReach) plus a margin of `reachMargin` set spacings (the probes round
+//  down: without it strips along edges stayed uncovered and the sealed rooms' closed sides leaked
+//  twice as much); a hit cache keeps the last four point sets' reach. Sponza -36% -> -29% (-25%
+//  without the margin). The default since 2026-12-08. Measured per pair and per image in
+//  docs/vsgl.md, "Reach" and "The margin".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
 //  other kernels write only their own texel), so the maps are bit-identical run to run.
 //  Memory: maxLights tiles of mapSize^2 r32f plus a third for the pyramid: 1024 x 64^2 = 16 MiB
@@ -160,7 +161,8 @@ struct ISMParams {
     float edgeMargin = 0.1f;         // planes: margin beside a parallel step, relative to the distance (ours)
     int gapReach = 4;                // planes: gap filling from opposite neighbours up to this many texels away; 0 = none (ours)
     float nearField = 1.5f;          // every point of P within this x sqrt(A / pointsPerMap) of a light is splatted too; 0 = none (ours)
-    bool reach = false;              // planes: a disk stops where its point's surface does (surfaceReach) (ours; off: docs/vsgl.md "Reach")
+    bool reach = true;               // planes: a disk stops where its point's surface does (surfaceReach) (ours; docs/vsgl.md "Reach")
+    float reachMargin = 1.5f;        // reach: a disk runs this many set spacings past it (ismWithinReach margin) (ours)
     std::uint32_t seed = 1;          // the point set's random stream
 
     // Keys prefix + "Points", "PointsPerMap", "MapSize", "PullPushLevels", "PullPushDepthRange",
@@ -197,6 +199,7 @@ public:
     // With params.planes: r32ui 2D array in the maps' layout, level 0 only: the packed normal of each
     // texel's winning point (glsl/shared/ism.h, ismPackNormal), kISMNoNormal where none won it.
     const gl::Texture& normals() const { return mNormals; }
+    float reachMargin() const { return mReachMargin; } // [m] ISMParams::reachMargin x the set's spacing (0 without the reach)
     const gl::Buffer& points() const { return mPoints; } // per point: vec3 position, uint packed normal; with the reach a second uvec4 (its profile)
     float splatRadius() const { return mSplatRadius; }   // after setScene
     // The near field's radius and its points' disk radius [m] (after setScene; 0 without a near field).
@@ -221,6 +224,7 @@ private:
     gl::Sampler mSampler;
     gl::Buffer mPoints;
     int mPointStride = 1; // uvec4s a point in mPoints: 2 with the reach
+    float mReachMargin = 0.0f; // ISMParams::reachMargin x the set's spacing [m]
     int mPointCount = 0;
     float mSplatRadius = 0.0f; // world radius of a point's disk [m] (splatScale sqrt(A / (pi pointsPerMap)))
     // Near field (params.nearField > 0): the points hashed by cells of edge mNearRadius (glsl/shared/ism.h,

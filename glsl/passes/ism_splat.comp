@@ -63,6 +63,7 @@ uniform int uOwnSurfaceOnly;   // 1: of the points within the own radius, only t
 uniform int uPlanes;           // 1: the centre texel holds the distance to the point's plane (glsl/shared/ism.h, planes)
 uniform int uPass;             // 0: distances (nearest wins); 1: normals where the point's distance won the texel
 uniform int uReach;            // 1 (with uPlanes): a disk's texel beyond the point's reach is not written (ismWithinReach)
+uniform float uReachMargin;    // [m] the reach's margin (ismWithinReach)
 
 // Pass 0: the nearest distance wins. Pass 1 (planes): where this point's distance is the texel's,
 // its packed normal, the smallest winning.
@@ -124,7 +125,7 @@ void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, floa
                 // The meeting point's offset from the point (light frame) against the reach.
                 if (cut && ismValid(distance) &&
                     !ismWithinReach(record.reach, distance * vplParaboloidTexelDirection(ivec2(x, y), uMapSize) - toPoint,
-                                    reachAxis0, reachAxis1, uSplatRadius))
+                                    reachAxis0, reachAxis1, uSplatRadius, uReachMargin))
                     distance = kVPLNoOccluder;
             }
             if (ismValid(distance)) splatTexel(ivec3(tileOrigin + ivec2(x, y), texel.z), distance, packedNormal);

@@ -319,8 +319,11 @@ std::vector<std::pair<std::string, ISMParams>> ismVariants()
     p.gapReach = 0;
     variants.emplace_back("defaults without gap filling", p);
     p = ISMParams{};
-    p.reach = true;
-    variants.emplace_back("defaults with reach", p);
+    p.reach = false;
+    variants.emplace_back("defaults without the reach", p);
+    p = ISMParams{};
+    p.reachMargin = 0.0f;
+    variants.emplace_back("defaults with the reach's margin 0", p);
     p = ISMParams{};
     p.stratified = false;
     variants.emplace_back("defaults with i.i.d. points", p);
@@ -709,7 +712,7 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
         params.pointsPerMap = pointsAndRun.y;
         params.pullPushLevels = 0;
         params.gapReach = 0; // gap filling has its own twin (below)
-        params.reach = true; // an option (off by default): checked here
+        params.reach = true; // the default, set here as this test is about it
         ImperfectShadowMaps ism(test::shaders(), params, 8);
         ism.setScene(scene);
         ism.update(lightBuffer, 8, 2, 0);
@@ -760,7 +763,7 @@ TEST_CASE("ISM: the splat matches its CPU twin", "[gl][ism]")
                         if (shared::ismValid(d) &&
                             !shared::ismWithinReach(reach[index],
                                                     d * shared::vplParaboloidTexelDirection(glm::ivec2(tx, ty), size) - toPoint,
-                                                    axis0, axis1, ism.splatRadius()))
+                                                    axis0, axis1, ism.splatRadius(), ism.reachMargin()))
                             d = shared::kVPLNoOccluder;
                         float& t = expected[static_cast<std::size_t>(ty * size + tx)];
                         t = std::min(t, d);
