@@ -201,10 +201,10 @@ void ImperfectShadowMaps::setScene(const Scene& scene)
     // Each light's run of pointsPerMap points is a uniform sample of the area.
     mSplatRadius = diskRadius(mParams.pointsPerMap);
     const bool reach = mParams.reach && mParams.planes && mSplatRadius > 0.0f;
-    // Without the reach (the default) 16 bytes a point; with it, its profile in a second uvec4.
+    // 16 bytes a point; with the reach (the default) its profile in a second uvec4.
     mPointStride = reach ? 2 : 1;
-    mReachMargin = reach ? mParams.reachMargin * static_cast<float>(std::sqrt(sample.totalArea / static_cast<double>(sample.positions.size())))
-                         : 0.0f;
+    const double spacing = std::sqrt(sample.totalArea / static_cast<double>(sample.positions.size()));
+    mReachMargin = reach ? mParams.reachMargin * static_cast<float>(spacing) : 0.0f;
     const std::vector<std::uint32_t> reaches = reach ? cachedSurfaceReach(sample, mSplatRadius) : std::vector<std::uint32_t>();
     std::vector<glm::uvec4> packed(sample.positions.size() * static_cast<std::size_t>(mPointStride), glm::uvec4(0u));
     for (std::size_t i = 0; i < sample.positions.size(); ++i) {
