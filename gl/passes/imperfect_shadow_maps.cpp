@@ -14,6 +14,7 @@
 
 #include "../api/debug.h"
 #include "core/scene/surface_points.h"
+#include "core/util/content_hash.h"
 #include "core/util/error.h"
 #include "core/util/params.h"
 #include "core/util/power_of_two.h"
@@ -37,19 +38,16 @@ static_assert(sizeof(ISMPointRecord) == 16, "ISMPointRecord must match a std430 
 // surfaceReach of a point set, remembered for the last few sets in the process (ours): it takes
 // about half a second for the default 524,288 points on 2 cores, and one process often makes maps
 // of the same scene again (conform's seeds, a test's techniques, several ISM techniques at once).
-// The key hashes every byte of the points, the normals, the area and the radius (FNV-1a, 64 bits),
+// The key hashes every byte of the points, the normals, the area and the radius (Hasher: FNV-1a),
 // so a hit is the same input; the result is a pure function of it.
 std::vector<std::uint32_t> cachedSurfaceReach(const SurfacePoints& points, float radius)
 {
-    std::uint64_t hash = 1469598103934665603ull;
-    const auto mix = [&hash](const void* data, std::size_t bytes) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
-    };
-    mix(points.positions.data(), points.positions.size() * sizeof(glm::vec3));
-    mix(points.normals.data(), points.normals.size() * sizeof(glm::vec3));
-    mix(&points.totalArea, sizeof(points.totalArea));
-    mix(&radius, sizeof(radius));
+    Hasher hasher;
+    hasher.bytes(points.positions.data(), points.positions.size() * sizeof(glm::vec3));
+    hasher.bytes(points.normals.data(), points.normals.size() * sizeof(glm::vec3));
+    hasher.value(points.totalArea);
+    hasher.value(radius);
+    const std::uint64_t hash = hasher.digest();
     const std::size_t count = points.positions.size();
     static std::mutex mutex;
     static std::list<std::pair<std::uint64_t, std::vector<std::uint32_t>>> recent; // most recent first
@@ -279,7 +277,6 @@ void ImperfectShadowMaps::update(const gl::Buffer& lights, int count, int stride
     splat.set("uRadius2Vec4", radius2Vec4);
     splat.set("uOwnRadius", mParams.ownRadius);
     splat.set("uPlanes", mParams.planes ? 1 : 0);
-    splat.set("uReach", mParams.planes && mParams.reach ? 1 : 0);
     splat.set("uPointStride", mPointStride);
     splat.set("uReachMargin", mReachMargin);
     splat.set("uOwnSurfaceOnly", mParams.ownSurfaceOnly ? 1 : 0);

@@ -62,7 +62,6 @@ uniform float uOwnRadius;      // points within this x the light's radius are no
 uniform int uOwnSurfaceOnly;   // 1: of the points within the own radius, only those of the light's own surface are left out
 uniform int uPlanes;           // 1: the centre texel holds the distance to the point's plane (glsl/shared/ism.h, planes)
 uniform int uPass;             // 0: distances (nearest wins); 1: normals where the point's distance won the texel
-uniform int uReach;            // 1 (with uPlanes): a disk's texel beyond the point's reach is not written (ismWithinReach)
 uniform float uReachMargin;    // [m] the reach's margin (ismWithinReach)
 
 // Pass 0: the nearest distance wins. Pass 1 (planes): where this point's distance is the texel's,
@@ -110,7 +109,7 @@ void splatPoint(ISMPoint record, int light, vec3 lightPosition, mat3 frame, floa
     if (ismValid(centreDistance)) splatTexel(texel, centreDistance, packedNormal);
     if (!(radius > 0.0)) return;
     // The reach: only a point whose disk is cut somewhere tests its texels (glsl/shared/ism.h).
-    bool cut = uPlanes != 0 && uReach != 0 && record.reach != kISMReachFull;
+    bool cut = uPlanes != 0 && record.reach != kISMReachFull; // without the reach every record is whole
     vec3 reachAxis0 = vec3(0.0), reachAxis1 = vec3(0.0);
     if (cut) ismReachAxes(worldNormal, frame, reachAxis0, reachAxis1);
     vec2 centre = ismMapPosition(toPoint / toPointLength, uMapSize);
