@@ -113,7 +113,7 @@
 //  surfaceReach, from the point set itself) and the splat writes no texel beyond it
 //  (glsl/shared/ism.h, ismWithinReach) plus a margin of `reachMargin` set spacings (the probes round
 //  down: without it strips along edges stayed uncovered and the sealed rooms' closed sides leaked
-//  twice as much); a hit cache keeps the last four point sets' reach. Sponza -36% -> -29% (-25%
+//  twice as much); a hit cache keeps the last four point sets' reach. Sponza -37% -> -30% over 8 seeds (-25%
 //  without the margin). The default since 2026-12-08. Measured per pair and per image in
 //  docs/vsgl.md, "Reach" and "The margin".
 //  Determinism: no step depends on the order invocations run in (min is order-independent, the
